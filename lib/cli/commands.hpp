@@ -1,0 +1,12 @@
+#pragma once
+// Each subcommand registers itself on the app with a callback that does its work. Errors are
+// thrown: core::InputError (exit 2), anything else (exit 1); main() maps them to exit codes.
+#include <CLI/CLI.hpp>
+
+namespace slipwalk::cli {
+
+void add_inchworm_command(CLI::App& app);   ///< inchworm vss | trace      (inchworm_command.cpp)
+void add_sweep_command(CLI::App& app);      ///< sweep SPEC.toml            (sweep_command.cpp)
+void add_reproduce_command(CLI::App& app);  ///< reproduce [--quick] [...]  (reproduce_command.cpp)
+
+}  // namespace slipwalk::cli

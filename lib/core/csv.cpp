@@ -1,0 +1,72 @@
+#include "core/csv.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace slipwalk::core {
+
+std::string format_double(double value) {
+  if (std::isnan(value)) {
+    return "nan";
+  }
+  if (std::isinf(value)) {
+    return value > 0 ? "inf" : "-inf";
+  }
+  std::array<char, 32> buffer{};
+  std::snprintf(buffer.data(), buffer.size(), "%.17g", value);
+  return buffer.data();
+}
+
+CsvWriter::CsvWriter(std::ostream& out, const std::vector<std::string>& columns)
+    : out_(out), columns_(columns.size()) {
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    out_ << (i ? "," : "") << columns[i];
+  }
+  out_ << '\n';
+}
+
+void CsvWriter::separator() {
+  if (in_row_++ > 0) {
+    out_ << ',';
+  }
+}
+
+CsvWriter& CsvWriter::cell(double value) {
+  separator();
+  out_ << format_double(value);
+  return *this;
+}
+
+CsvWriter& CsvWriter::cell(long long value) {
+  separator();
+  out_ << value;
+  return *this;
+}
+
+CsvWriter& CsvWriter::cell(std::string_view text) {
+  separator();
+  // Quote text that would break the row; our own labels never need it, user text might.
+  if (text.find_first_of(",\"\n") != std::string_view::npos) {
+    out_ << '"';
+    for (char c : text) {
+      out_ << (c == '"' ? "\"\"" : std::string(1, c));
+    }
+    out_ << '"';
+  } else {
+    out_ << text;
+  }
+  return *this;
+}
+
+void CsvWriter::end_row() {
+  if (in_row_ != columns_) {
+    throw std::logic_error("CsvWriter: row has " + std::to_string(in_row_) + " cells, header " +
+                           std::to_string(columns_));
+  }
+  out_ << '\n';
+  in_row_ = 0;
+}
+
+}  // namespace slipwalk::core

@@ -1,0 +1,64 @@
+#pragma once
+// The instant-swap inchworm of thesis §2.2 as a hybrid system (see events/hybrid_system.hpp).
+//
+// Bodies: 0 = m at x, 1 = M at y. The actuator force on m is F_t sgn(x−y) = +F and on M is −F
+// in every stroke (eqs. 2.1–2.2 with F_t = F sgn(x−y), §2.3): extension from x−y = L_min to
+// L_max, then contraction from x−y = −L_max to −L_min. Each stroke ends in a plastic collision
+// (eq. 2.4) followed by the instantaneous swap of the two masses.
+// Friction (eq. 2.3) is a mode per mass: sliding forward, sliding backward or stuck. A stuck
+// mass stays stuck while |applied force| ≤ μ_s N; the applied force is constant within a stroke,
+// so a mass leaves the stuck mode only at a collision.
+#include <cstdint>
+
+#include "events/hybrid_system.hpp"
+#include "inchworm/params.hpp"
+
+namespace slipwalk::inchworm {
+
+class InstantSwapSystem {
+ public:
+  static constexpr int kBodies = 2;
+  static constexpr int kMaxGuards = 3;
+  using StateType = events::State<kBodies>;
+
+  /// Guard ids passed to reset().
+  enum GuardId : int {
+    kSmallStops = 0,   ///< m's velocity reaches zero
+    kLargeStops = 1,   ///< M's velocity reaches zero
+    kLengthLimit = 2,  ///< x−y reaches L_max (extension) or −L_min (contraction)
+  };
+
+  /// slide: +1 sliding forward, −1 backward, 0 stuck. side = sgn(x − y): +1 extension stroke.
+  struct Mode {
+    std::int8_t slide_m = 0;
+    std::int8_t slide_M = 0;
+    std::int8_t side = 1;
+    friend bool operator==(const Mode&, const Mode&) = default;
+  };
+
+  explicit InstantSwapSystem(const Params& p);
+
+  [[nodiscard]] events::ModeFlow<kBodies, kMaxGuards> flow(Mode mode) const;
+  [[nodiscard]] Mode reset(Mode mode, int guard_id, StateType& x) const;
+
+  /// The mode of a state: sliding masses by their velocity; masses at rest by static friction.
+  [[nodiscard]] Mode mode_of(const StateType& x, std::int8_t side) const;
+  /// Both masses at rest, x − y = L_min, CoM at 0: the start of every thesis run (§2.3).
+  [[nodiscard]] StateType rest_state() const;
+  [[nodiscard]] double com(const StateType& x) const {
+    return (p_.m * x(0) + p_.M * x(1)) / (p_.m + p_.M);
+  }
+  [[nodiscard]] double com_velocity(const StateType& x) const {
+    return (p_.m * x(2) + p_.M * x(3)) / (p_.m + p_.M);
+  }
+  [[nodiscard]] const Params& params() const { return p_; }
+
+ private:
+  Params p_;
+  double accel_m_[3];  ///< m's acceleration when sliding backward, stuck, forward (index slide+1)
+  double accel_M_[3];  ///< M's acceleration likewise
+  std::int8_t rest_m_;  ///< m's mode when it comes to rest: +1 if F > μ_s m g, else 0
+  std::int8_t rest_M_;  ///< M's mode when it comes to rest: −1 if F > μ_s M g, else 0
+};
+
+}  // namespace slipwalk::inchworm

@@ -1,0 +1,37 @@
+#pragma once
+// Parameters of the inchworm of thesis §2.2–2.3 (SI units). Defaults are the thesis' choices.
+#include <cmath>
+#include <limits>
+
+namespace slipwalk::inchworm {
+
+struct Params {
+  double m = 1.0;       ///< kg, the smaller point mass (x); valid: > 0
+  double M = 1.5;       ///< kg, the larger point mass (y); valid: > m (else no net motion)
+  double L_min = 0.02;  ///< m, shortest actuator length; valid: > 0
+  double L_max = 0.5;   ///< m, longest actuator length; valid: > L_min
+  double g = 9.81;      ///< m/s², gravitational acceleration; valid: > 0
+  double mu = 1.0;      ///< dynamic friction coefficient; valid: > 0 (thesis range 0.05–1)
+  double mu_s = std::numeric_limits<double>::quiet_NaN();  ///< static coefficient; NaN = mu; ≥ mu
+  double F = 45.0;      ///< N, actuator force magnitude; valid: > mu_s·m·g (else m never moves)
+
+  [[nodiscard]] double static_mu() const { return std::isnan(mu_s) ? mu : mu_s; }
+  [[nodiscard]] double stroke() const { return L_max - L_min; }            ///< ΔL
+  [[nodiscard]] double swap_ratio() const { return (M - m) / (M + m); }  ///< ρ: CoM jump / d
+};
+
+/// Throws core::InputError naming the offending option (--force, --mu, ...) when a parameter is
+/// out of its valid range or not a finite number.
+void validate(const Params& p);
+
+/// The regimes of §2.3.1: I, M stops and stays (F ≤ μ_s M g); II, M stops then slides back.
+enum class Regime { kOne = 1, kTwo = 2 };
+
+/// Which regime the steady stroke is in; decided by static friction of M alone.
+[[nodiscard]] inline Regime regime_of(const Params& p) {
+  return p.F <= p.static_mu() * p.M * p.g ? Regime::kOne : Regime::kTwo;
+}
+
+[[nodiscard]] inline const char* regime_name(Regime r) { return r == Regime::kOne ? "I" : "II"; }
+
+}  // namespace slipwalk::inchworm
