@@ -7,8 +7,7 @@
 namespace slipwalk::core {
 
 AtomicFile::AtomicFile(std::filesystem::path target)
-    : target_(std::move(target)),
-      temp_(target_.string() + ".tmp." + std::to_string(::getpid())) {
+    : target_(std::move(target)), temp_(target_.string() + ".tmp." + std::to_string(::getpid())) {
   if (target_.has_parent_path()) {
     std::error_code ec;
     std::filesystem::create_directories(target_.parent_path(), ec);

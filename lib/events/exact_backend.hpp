@@ -18,7 +18,8 @@ template <int N>
 [[nodiscard]] inline State<N> constant_acceleration_state(const State<N>& x, const Vec<N>& a,
                                                           double tau) {
   State<N> out;
-  out.template head<N>() = x.template head<N>() + tau * x.template tail<N>() + (0.5 * tau * tau) * a;
+  out.template head<N>() =
+      x.template head<N>() + tau * x.template tail<N>() + (0.5 * tau * tau) * a;
   out.template tail<N>() = x.template tail<N>() + tau * a;
   return out;
 }
@@ -47,6 +48,15 @@ class ExactBackend {
         fired = k;
       }
     }
+    // Dense output for traces: the exact solution at every multiple of the sample interval.
+    if (sample_interval_ > 0.0) {
+      for (double ts = std::ceil(t0 / sample_interval_) * sample_interval_; ts < t0 + tau_min;
+           ts += sample_interval_) {
+        if (ts > t0) {
+          observe(ts, constant_acceleration_state<N>(x, flow.accel, ts - t0));
+        }
+      }
+    }
     x = constant_acceleration_state<N>(x, flow.accel, tau_min);
     ++stats_.steps;
     observe(t0 + tau_min, x);
@@ -54,9 +64,12 @@ class ExactBackend {
   }
 
   [[nodiscard]] const BackendStats& stats() const { return stats_; }
+  /// Makes advance() also report the exact state at every multiple of `dt` (0 = off).
+  void set_sample_interval(double dt) { sample_interval_ = dt; }
 
  private:
   BackendStats stats_;
+  double sample_interval_ = 0.0;
 };
 
 }  // namespace slipwalk::events

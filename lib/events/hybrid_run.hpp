@@ -17,7 +17,7 @@ enum class RunStatus {
 };
 
 struct RunLimits {
-  double t_end = 1e9;             ///< stop at this time
+  double t_end = 1e9;                 ///< stop at this time
   long long max_events = 10'000'000;  ///< stop after this many events
 };
 

@@ -35,7 +35,7 @@ struct AffineGuard {
 /// What a mode does: constant accelerations and the guards that can end it.
 template <int N, int G>
 struct ModeFlow {
-  Vec<N> accel = Vec<N>::Zero();       ///< (N) accelerations of the bodies in this mode
+  Vec<N> accel = Vec<N>::Zero();        ///< (N) accelerations of the bodies in this mode
   std::array<AffineGuard<N>, G> guard;  ///< (G) active guards, the first `n_guards` of them
   int n_guards = 0;
 };
@@ -47,18 +47,20 @@ template <int N>
 
 /// A hybrid system with constant accelerations per mode and affine guards.
 template <class S>
-concept PiecewiseConstantAccelerationSystem =
-    requires(const S& sys, typename S::Mode mode, State<S::kBodies>& x, int guard_id) {
-      requires S::kBodies > 0;
-      requires S::kMaxGuards > 0;
-      { sys.flow(mode) } -> std::same_as<ModeFlow<S::kBodies, S::kMaxGuards>>;
-      { sys.reset(mode, guard_id, x) } -> std::same_as<typename S::Mode>;
-    };
+concept PiecewiseConstantAccelerationSystem = requires(const S& sys, typename S::Mode mode,
+                                                       State<S::kBodies>& x, int guard_id) {
+  requires S::kBodies >
+  0;
+  requires S::kMaxGuards >
+  0;
+  { sys.flow(mode) } -> std::same_as<ModeFlow<S::kBodies, S::kMaxGuards>>;
+  { sys.reset(mode, guard_id, x) } -> std::same_as<typename S::Mode>;
+};
 
 /// Tolerances shared by the numeric backends. The exact backend ignores them.
 struct BackendOptions {
-  double rtol = 1e-10;  ///< relative tolerance of the ODE steps
-  double atol = 1e-12;  ///< absolute tolerance of the ODE steps
+  double rtol = 1e-10;     ///< relative tolerance of the ODE steps
+  double atol = 1e-12;     ///< absolute tolerance of the ODE steps
   double event_tol = 0.0;  ///< time tolerance of guard location; 0 = backend default (~1e-14 s·t)
 };
 

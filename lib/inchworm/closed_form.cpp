@@ -67,8 +67,7 @@ Stroke stroke_map(const Params& p, double c0) {
 
 namespace {
 
-SteadyState finish(const Params& p, const StrokeAccelerations& s, double c0, double t1,
-                   double t2) {
+SteadyState finish(const Params& p, const StrokeAccelerations& s, double c0, double t1, double t2) {
   SteadyState st{};
   st.c0 = c0;
   st.t1 = t1;

@@ -21,12 +21,12 @@ namespace slipwalk::inchworm {
 
 /// The constant accelerations of a stroke's two phases.
 struct StrokeAccelerations {
-  double a_x;   ///< m's acceleration, both phases
-  double b;     ///< M's deceleration in phase 1 (M sliding forward)
-  double r1;    ///< relative acceleration (x − y)'' in phase 1
-  double r2;    ///< relative acceleration in phase 2
-  double a2;    ///< CoM acceleration in phase 2 (phase 1: −μg)
-  double kappa; ///< c1 / c0 = F / (F + μ M g)
+  double a_x;    ///< m's acceleration, both phases
+  double b;      ///< M's deceleration in phase 1 (M sliding forward)
+  double r1;     ///< relative acceleration (x − y)'' in phase 1
+  double r2;     ///< relative acceleration in phase 2
+  double a2;     ///< CoM acceleration in phase 2 (phase 1: −μg)
+  double kappa;  ///< c1 / c0 = F / (F + μ M g)
   Regime regime;
 };
 

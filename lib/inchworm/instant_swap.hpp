@@ -55,8 +55,8 @@ class InstantSwapSystem {
 
  private:
   Params p_;
-  double accel_m_[3];  ///< m's acceleration when sliding backward, stuck, forward (index slide+1)
-  double accel_M_[3];  ///< M's acceleration likewise
+  double accel_m_[3];   ///< m's acceleration when sliding backward, stuck, forward (index slide+1)
+  double accel_M_[3];   ///< M's acceleration likewise
   std::int8_t rest_m_;  ///< m's mode when it comes to rest: +1 if F > μ_s m g, else 0
   std::int8_t rest_M_;  ///< M's mode when it comes to rest: −1 if F > μ_s M g, else 0
 };

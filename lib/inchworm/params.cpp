@@ -18,14 +18,14 @@ std::string num(double v) { return core::format_double(v); }
 
 void validate(const Params& p) {
   const std::pair<const char*, double> finite[] = {
-      {"--m", p.m},   {"--M", p.M},       {"--L-min", p.L_min}, {"--L-max", p.L_max},
-      {"--g", p.g},   {"--mu", p.mu},     {"--force", p.F}};
+      {"--m", p.m}, {"--M", p.M},   {"--L-min", p.L_min}, {"--L-max", p.L_max},
+      {"--g", p.g}, {"--mu", p.mu}, {"--force", p.F}};
   for (const auto& [name, value] : finite) {
     require(std::isfinite(value), name, "must be a finite number, got " + num(value));
   }
   require(p.m > 0.0, "--m", "the small mass must be positive, got " + num(p.m));
-  require(p.M > p.m, "--M", "the large mass must exceed the small mass m = " + num(p.m) +
-                                " kg, got " + num(p.M));
+  require(p.M > p.m, "--M",
+          "the large mass must exceed the small mass m = " + num(p.m) + " kg, got " + num(p.M));
   require(p.L_min > 0.0, "--L-min", "must be positive, got " + num(p.L_min));
   require(p.L_max > p.L_min, "--L-max",
           "must exceed L_min = " + num(p.L_min) + " m, got " + num(p.L_max));

@@ -13,10 +13,10 @@ struct Params {
   double g = 9.81;      ///< m/s², gravitational acceleration; valid: > 0
   double mu = 1.0;      ///< dynamic friction coefficient; valid: > 0 (thesis range 0.05–1)
   double mu_s = std::numeric_limits<double>::quiet_NaN();  ///< static coefficient; NaN = mu; ≥ mu
-  double F = 45.0;      ///< N, actuator force magnitude; valid: > mu_s·m·g (else m never moves)
+  double F = 45.0;  ///< N, actuator force magnitude; valid: > mu_s·m·g (else m never moves)
 
   [[nodiscard]] double static_mu() const { return std::isnan(mu_s) ? mu : mu_s; }
-  [[nodiscard]] double stroke() const { return L_max - L_min; }            ///< ΔL
+  [[nodiscard]] double stroke() const { return L_max - L_min; }          ///< ΔL
   [[nodiscard]] double swap_ratio() const { return (M - m) / (M + m); }  ///< ρ: CoM jump / d
 };
 

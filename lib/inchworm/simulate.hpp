@@ -24,22 +24,36 @@
 
 namespace slipwalk::inchworm {
 
+/// When a simulation stops.
+enum class StopRule {
+  kEstimatedError,         ///< ours: estimated remaining error (from the contraction) ≤ target
+  kConsecutiveDifference,  ///< the thesis (§2.2.2): |A_j − A_{j−1}| / |A_j| ≤ target
+};
+
+/// What is reported as v_ss.
+enum class Estimator {
+  kCycleAverage,  ///< the average over the last cycle (eq. 2.5)
+  kRunningMean,   ///< the average over the whole run from rest ("over a long simulation", §2.2.2)
+};
+
 struct SimulationOptions {
-  double target = 1e-12;             ///< stop when the estimated remaining relative error ≤ this
+  double target = 1e-12;              ///< stop threshold (relative), see StopRule
   long long max_strokes = 4'000'000;  ///< give up (converged = false) after this many strokes
   int min_cycles = 4;                 ///< never stop before this many cycles
+  StopRule stop = StopRule::kEstimatedError;
+  Estimator estimator = Estimator::kCycleAverage;
 };
 
 struct SimulationSummary {
   bool converged = false;
-  std::string message;         ///< why it stopped
-  double v_ss = 0.0;           ///< the last cycle average (eq. 2.5)
-  double period = 0.0;         ///< mean stroke duration of the last cycle
-  double c0 = 0.0;             ///< CoM velocity at the start of the last cycle's first stroke
+  std::string message;           ///< why it stopped
+  double v_ss = 0.0;             ///< the last cycle average (eq. 2.5)
+  double period = 0.0;           ///< mean stroke duration of the last cycle
+  double c0 = 0.0;               ///< CoM velocity at the start of the last cycle's first stroke
   Regime regime = Regime::kOne;  ///< what M did in the last stroke: stayed stuck (I) or slid (II)
-  double est_error = 0.0;      ///< estimated |v_ss(last cycle) − v_ss(limit)| / v_ss
+  double est_error = 0.0;        ///< estimated |v_ss(last cycle) − v_ss(limit)| / v_ss
   double last_difference = 0.0;  ///< |V_j − V_{j−1}| / V_j, what the thesis' criterion looks at
-  double contraction = 0.0;    ///< estimated per-cycle contraction λ
+  double contraction = 0.0;      ///< estimated per-cycle contraction λ
   long long strokes = 0;
   events::BackendStats stats;
   std::vector<double> cycle_averages;  ///< V_0, V_1, ... (kept only if record_cycles)
@@ -116,6 +130,9 @@ SimulationSummary steady_state_by_simulation(const Params& p, Backend& backend,
   auto mode = sys.mode_of(x, 1);
   SimulationSummary out;
   std::vector<double> averages;  // one per cycle; a run keeps at most max_strokes/2 of them
+  double total_displacement = 0.0;
+  double total_time = 0.0;
+  double previous_reported = std::nan("");
   try {
     for (long long cycle = 0; 2 * cycle < opt.max_strokes; ++cycle) {
       const double c_start = sys.com_velocity(x);
@@ -124,19 +141,28 @@ SimulationSummary steady_state_by_simulation(const Params& p, Backend& backend,
       out.strokes += 2;
       const double avg = (a.displacement + b.displacement) / (a.duration + b.duration);
       averages.push_back(avg);
-      out.v_ss = avg;
+      total_displacement += a.displacement + b.displacement;
+      total_time += a.duration + b.duration;
+      const double reported =
+          opt.estimator == Estimator::kRunningMean ? total_displacement / total_time : avg;
+      out.v_ss = reported;
       out.period = 0.5 * (a.duration + b.duration);
       out.c0 = c_start;
       out.regime = b.large_mass_slid_back ? Regime::kTwo : Regime::kOne;
       const auto j = static_cast<long long>(averages.size()) - 1;
       if (j >= 1) {
-        out.last_difference = std::abs(avg - averages[j - 1]) / std::abs(avg);
+        out.last_difference = std::abs(reported - previous_reported) / std::abs(reported);
       }
+      previous_reported = reported;
       if (j >= 2) {
+        // The remaining-error estimate is always that of the cycle averages; for the running
+        // mean it is a lower bound (the running mean converges only like 1/j).
         const RemainingError r = remaining_error(averages);
         out.est_error = r.error / std::abs(avg);
         out.contraction = r.contraction;
-        if (cycle + 1 >= opt.min_cycles && out.est_error <= opt.target) {
+        const double criterion =
+            opt.stop == StopRule::kEstimatedError ? out.est_error : out.last_difference;
+        if (cycle + 1 >= opt.min_cycles && criterion <= opt.target) {
           out.converged = true;
           out.message = "converged";
           break;
