@@ -50,8 +50,13 @@ class ExactBackend {
     }
     // Dense output for traces: the exact solution at every multiple of the sample interval.
     if (sample_interval_ > 0.0) {
-      for (double ts = std::ceil(t0 / sample_interval_) * sample_interval_; ts < t0 + tau_min;
-           ts += sample_interval_) {
+      // Integer sample indices: no drift from repeated addition.
+      const auto first = static_cast<long long>(std::ceil(t0 / sample_interval_));
+      for (long long k = first;; ++k) {
+        const double ts = static_cast<double>(k) * sample_interval_;
+        if (ts >= t0 + tau_min) {
+          break;
+        }
         if (ts > t0) {
           observe(ts, constant_acceleration_state<N>(x, flow.accel, ts - t0));
         }

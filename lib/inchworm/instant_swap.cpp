@@ -73,7 +73,13 @@ InstantSwapSystem::Mode InstantSwapSystem::reset(Mode mode, int guard_id, StateT
 
 InstantSwapSystem::Mode InstantSwapSystem::mode_of(const StateType& x, std::int8_t side) const {
   auto direction = [](double v, std::int8_t at_rest) -> std::int8_t {
-    return v > 0.0 ? 1 : (v < 0.0 ? -1 : at_rest);
+    if (v > 0.0) {
+      return 1;
+    }
+    if (v < 0.0) {
+      return -1;
+    }
+    return at_rest;
   };
   return {direction(x(2), rest_m_), direction(x(3), rest_M_), side};
 }
