@@ -1,0 +1,481 @@
+#!/usr/bin/python3
+"""Builds the report: runs every figure script, evaluates the claims ledger, writes index.html.
+
+    /usr/bin/python3 reports/build_report.py --data DATA --out OUT [--quick]
+
+Every figure script runs with this interpreter (sys.executable) into a staging folder inside
+OUT; only when all of them succeed are their PNGs, tables and values moved into OUT, index.html
+last (written whole, then renamed), so a failed build leaves no partial page and no mix of old
+and new values. Exit status: 0 built (whatever the verdicts), 1 a script failed, 2 bad input.
+"""
+from __future__ import annotations
+
+import argparse
+import concurrent.futures
+import datetime
+import html
+import json
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+import common as c  # noqa: E402
+
+SCRIPTS = ["fig2_2", "fig2_3", "regression", "eq2_6", "separation", "performance", "stability"]
+VERDICT_CLASS = {
+    "reproduced": "ok",
+    "differs — explained": "explained",
+    "differs — not explained": "bad",
+    "needs data we do not have": "nodata",
+    "not measured": "bad",
+}
+
+
+# ---------------------------------------------------------------------------------------------
+# Running the scripts
+
+
+def run_script(name: str, data: Path, out: Path, claims: Path) -> tuple[str, int, str, float]:
+    start = time.monotonic()
+    env = dict(os.environ, SLIPWALK_CLAIMS=str(claims))
+    proc = subprocess.run([sys.executable, str(HERE / f"{name}.py"), "--data", str(data),
+                           "--out", str(out)], capture_output=True, text=True, env=env)
+    return name, proc.returncode, (proc.stdout + proc.stderr).strip(), time.monotonic() - start
+
+
+# ---------------------------------------------------------------------------------------------
+# The ledger
+
+
+class Values:
+    def __init__(self, folder: Path):
+        self.by_script: dict[str, dict] = {}
+        for p in sorted(folder.glob("*.json")):
+            self.by_script[p.stem] = json.loads(p.read_text())
+        self.missing: list[str] = []
+
+    def has(self, key: str) -> bool:
+        script, _, name = key.partition(".")
+        return name in self.by_script.get(script, {})
+
+    def get(self, key: str):
+        script, _, name = key.partition(".")
+        if script not in self.by_script or name not in self.by_script[script]:
+            self.missing.append(key)
+            return None
+        return self.by_script[script][name]
+
+
+def fmt_value(v, spec: str | None = None) -> str:
+    if v is None:
+        return "—"
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, list):
+        return "[" + ", ".join(fmt_value(x, spec) for x in v) + "]"
+    if isinstance(v, (int, float)):
+        if spec:
+            try:
+                return format(v, spec)
+            except (ValueError, TypeError):
+                pass
+        return c.fmt(v, 4)
+    return str(v)
+
+
+TEMPLATE = re.compile(r"\{([a-z0-9_]+)\.([^{}:]+)(?::([^{}]*))?\}")
+
+
+def render(text: str, values: Values) -> str:
+    def sub(mt):
+        key = f"{mt.group(1)}.{mt.group(2)}"
+        if not values.has(key):
+            values.missing.append(key)
+            return f"[missing {key}]"
+        return fmt_value(values.get(key), mt.group(3))
+
+    return TEMPLATE.sub(sub, text or "")
+
+
+def compare(rule: str, ours: float, target: float, tol: float) -> bool:
+    if rule == "at_least":
+        return ours >= target - tol
+    if rule == "at_most":
+        return ours <= target + tol
+    if rule == "abs_tol":
+        return abs(ours - target) <= tol
+    if rule == "rel_tol":
+        return abs(ours - target) <= tol * abs(target)
+    raise ValueError(f"unknown compare rule '{rule}'")
+
+
+def is_number(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def evaluate(claim: dict, values: Values) -> dict:
+    """The verdict of one ledger entry, computed from the values."""
+    cid = claim.get("id", "?")
+    rule = claim.get("compare")
+    keys = claim.get("ours")
+    res = {"id": cid, "ours": None, "reason": ""}
+    if isinstance(keys, list):
+        got = [values.get(k) for k in keys]
+        agg = claim.get("aggregate")
+        if agg in ("min", "max"):
+            nums = [g for g in got if is_number(g)]
+            res["ours"] = (min(nums) if agg == "min" else max(nums)) if nums else None
+        elif agg is None:
+            res["ours"] = got
+        else:
+            raise ValueError(f"claim {cid}: unknown aggregate '{agg}'")
+    elif isinstance(keys, str):
+        res["ours"] = values.get(keys)
+    elif keys is not None:
+        raise ValueError(f"claim {cid}: 'ours' must be a key or a list of keys")
+
+    if rule == "needs_data":
+        res["verdict"] = "needs data we do not have"
+        return res
+    if keys is None:
+        raise ValueError(f"claim {cid}: 'ours' is required with compare = '{rule}'")
+    ours = res["ours"]
+    missing = [k for k in (keys if isinstance(keys, list) else [keys]) if not values.has(k)]
+    if missing:
+        res["verdict"] = "not measured"
+        res["reason"] = "no value " + ", ".join(missing)
+        return res
+    if ours is None or (isinstance(ours, list) and any(o is None for o in ours)):
+        reasons = [values.get(k + "_reason") for k in (keys if isinstance(keys, list) else [keys])
+                   if values.has(k + "_reason")]
+        res["verdict"] = "not measured"
+        res["reason"] = "; ".join(str(r) for r in reasons) or "the script could not measure it"
+        return res
+
+    if rule == "is_true":
+        ok = ours is True
+    else:
+        target = claim.get("target", claim.get("thesis"))
+        tol = float(claim.get("tol", 0.0))
+        if isinstance(ours, list):
+            if not isinstance(target, list) or len(target) != len(ours):
+                raise ValueError(f"claim {cid}: a list in 'ours' needs a list target of equal "
+                                 "length (or an aggregate)")
+            ok = all(compare(rule, float(o), float(tg), tol) for o, tg in zip(ours, target))
+        else:
+            if not is_number(target):
+                raise ValueError(f"claim {cid}: compare '{rule}' needs a numeric target")
+            if not is_number(ours):
+                raise ValueError(f"claim {cid}: value {keys} is not a number: {ours!r}")
+            ok = compare(rule, float(ours), float(target), tol)
+    if ok:
+        res["verdict"] = "reproduced"
+    elif claim.get("explanation"):
+        res["verdict"] = "differs — explained"
+    else:
+        res["verdict"] = "differs — not explained"
+    return res
+
+
+# ---------------------------------------------------------------------------------------------
+# HTML
+
+CSS = """
+body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0;color:#222;background:#fafafa;line-height:1.45}
+header{background:#1f3040;color:#fff;padding:14px 28px}
+header h1{margin:0;font-size:1.35em}
+header .sub{color:#c8d4de;font-size:.9em}
+nav{position:sticky;top:0;background:#2c4255;padding:6px 28px;z-index:2}
+nav a{color:#fff;margin-right:18px;text-decoration:none;font-size:.95em}
+nav a:hover{text-decoration:underline}
+main{padding:6px 28px 40px;max-width:1500px}
+section{margin-top:26px}
+h2{border-bottom:2px solid #1f3040;padding-bottom:3px}
+.quick{background:#fff3cd;border:1px solid #e0c36a;padding:8px 12px;margin:12px 0;font-weight:600}
+.fig{display:flex;gap:22px;align-items:flex-start;flex-wrap:wrap;background:#fff;border:1px solid #ddd;padding:12px;margin:14px 0}
+.fig img{max-width:760px;width:100%;border:1px solid #eee}
+.fig .text{flex:1;min-width:340px}
+.fig.wide{flex-direction:column}
+.fig.wide img{max-width:1400px}
+blockquote{margin:6px 0;padding:4px 10px;border-left:3px solid #8aa;color:#444;background:#f4f7f7;font-style:italic}
+table{border-collapse:collapse;font-size:.86em;margin:8px 0}
+th,td{border:1px solid #ccc;padding:3px 6px;vertical-align:top;text-align:left}
+th{background:#e8edf1}
+tr.group td{background:#eef2f5;font-weight:600}
+tr.muted td,td.muted{color:#888}
+tr.bad td,td.bad{background:#fde8e8}
+.v{display:inline-block;padding:1px 6px;border-radius:3px;font-size:.9em;white-space:nowrap}
+.v.ok{background:#d8f0d8;color:#1d5e1d}
+.v.explained{background:#fff0cc;color:#6b4e00}
+.v.bad{background:#f7d4d4;color:#7a1515}
+.v.nodata{background:#e2e2f2;color:#333366}
+.small{font-size:.85em;color:#555}
+code{background:#eef;padding:0 3px}
+details{margin:4px 0}
+"""
+
+
+def verdict_badge(v: str) -> str:
+    return f"<span class='v {VERDICT_CLASS.get(v, 'bad')}'>{html.escape(v)}</span>"
+
+
+def thesis_text(v) -> str:
+    if isinstance(v, list):
+        return ", ".join(thesis_text(x) for x in v)
+    return str(v)
+
+
+def claim_rows(claims: list[dict], results: dict, values: Values, short: bool) -> str:
+    out = []
+    for cl in claims:
+        r = results[cl["id"]]
+        ours = fmt_value(r["ours"])
+        notes = []
+        if cl.get("criterion"):
+            notes.append(f"<div class='small'><b>criterion:</b> {html.escape(render(cl['criterion'], values))}</div>")
+        if r["verdict"].startswith("differs") and cl.get("explanation"):
+            notes.append(f"<div><b>why:</b> {html.escape(render(cl['explanation'], values))}</div>")
+        if r.get("reason"):
+            notes.append(f"<div><b>not measured:</b> {html.escape(r['reason'])}</div>")
+        if cl.get("note"):
+            notes.append(f"<div class='small'>{html.escape(render(cl['note'], values))}</div>")
+        cls = "bad" if r["verdict"] in ("differs — not explained", "not measured") else ""
+        if short:
+            out.append(f"<tr class='{cls}'><td><a href='#claim-{html.escape(cl['id'])}'>"
+                       f"{html.escape(cl['id'])}</a></td><td>{html.escape(thesis_text(cl.get('thesis', '')))}</td>"
+                       f"<td>{html.escape(ours)}</td><td>{verdict_badge(r['verdict'])}</td></tr>")
+        else:
+            ours_key = cl.get("ours")
+            src = ", ".join(ours_key) if isinstance(ours_key, list) else (ours_key or "—")
+            out.append(
+                f"<tr id='claim-{html.escape(cl['id'])}' class='{cls}'><td>{html.escape(cl['id'])}</td>"
+                f"<td>{html.escape(cl.get('section', ''))}</td>"
+                f"<td>{html.escape(render(cl.get('statement', ''), values))}</td>"
+                f"<td>{html.escape(thesis_text(cl.get('thesis', '')))}</td>"
+                f"<td>{html.escape(ours)}<div class='small'><code>{html.escape(src)}</code></div></td>"
+                f"<td>{verdict_badge(r['verdict'])}</td><td>{''.join(notes)}</td></tr>")
+    return "\n".join(out)
+
+
+def provenance_html(data: Path, script_times: dict, quick: bool) -> str:
+    rows = []
+    folder = data / c.STUDY
+    for csv_path in sorted(folder.glob("*.csv")):
+        side = csv_path.with_suffix(".json")
+        if not side.is_file():
+            rows.append(f"<tr><td>{html.escape(csv_path.name)}</td><td colspan='5' class='bad'>"
+                        "no sidecar</td></tr>")
+            continue
+        try:
+            meta = json.loads(side.read_text())
+        except json.JSONDecodeError as e:
+            rows.append(f"<tr><td>{html.escape(csv_path.name)}</td><td colspan='5' class='bad'>"
+                        f"sidecar is not JSON: {html.escape(str(e))}</td></tr>")
+            continue
+        prov = meta.get("provenance", {}) if isinstance(meta, dict) else {}
+        libs = prov.get("libraries", {})
+        libs_s = (", ".join(f"{k} {v}" for k, v in libs.items()) if isinstance(libs, dict)
+                  else str(libs))
+        wall = meta.get("wall_s")
+        spec = json.dumps(meta.get("spec", {}), indent=1)
+        rows.append(
+            f"<tr><td>{html.escape(csv_path.name)}</td><td><code>{html.escape(str(prov.get('git_commit', '—')))}</code></td>"
+            f"<td>{html.escape(str(prov.get('compiler', '—')))}</td><td>{html.escape(libs_s)}</td>"
+            f"<td>{html.escape(str(meta.get('threads', '—')))}</td>"
+            f"<td>{html.escape(fmt_value(wall) if wall is not None else '—')}</td>"
+            f"<td><details><summary>spec</summary><pre>{html.escape(spec)}</pre></details></td></tr>")
+    try:
+        commit = subprocess.run(["git", "-C", str(c.REPO), "rev-parse", "HEAD"],
+                                capture_output=True, text=True, timeout=10).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(c.REPO), "status", "--porcelain", "--",
+                                "reports", "data/thesis"], capture_output=True, text=True,
+                               timeout=10).stdout.strip()
+        commit = (commit or "unknown") + (" (reports/ or ledger modified)" if dirty else "")
+    except (OSError, subprocess.SubprocessError):
+        commit = "unknown (git not available)"
+    import matplotlib
+    import numpy
+
+    times = ", ".join(f"{k} {v:.1f} s" for k, v in script_times.items())
+    return (
+        "<table class='data'><thead><tr><th>data file</th><th>git commit</th><th>compiler</th>"
+        "<th>libraries</th><th>threads</th><th>wall [s]</th><th>spec</th></tr></thead><tbody>"
+        + "\n".join(rows) + "</tbody></table>"
+        f"<p class='small'>Data folder: <code>{html.escape(str(data))}</code>. Report built "
+        f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC} from commit "
+        f"<code>{html.escape(commit)}</code> with Python {platform.python_version()} "
+        f"(<code>{html.escape(sys.executable)}</code>), numpy {numpy.__version__}, matplotlib "
+        f"{matplotlib.__version__}{' — quick run' if quick else ''}. Script wall times: "
+        f"{html.escape(times)}.</p>")
+
+
+def build_html(ledger: dict, results: dict, values: Values, staging: Path, data: Path,
+               script_times: dict, quick: bool) -> str:
+    claims = ledger.get("claim", [])
+    by_id = {cl["id"]: cl for cl in claims}
+    counts: dict[str, int] = {}
+    for r in results.values():
+        counts[r["verdict"]] = counts.get(r["verdict"], 0) + 1
+    summary = " · ".join(f"{verdict_badge(k)} {n}" for k, n in sorted(counts.items()))
+
+    figs = []
+    for fg in ledger.get("figure", []):
+        script = fg["script"]
+        linked = [by_id[i] for i in fg.get("claims", []) if i in by_id]
+        table = ""
+        if fg.get("table") and (staging / fg["table"]).is_file():
+            table = (staging / fg["table"]).read_text()
+        mini = ("<table><thead><tr><th>claim</th><th>thesis</th><th>ours</th><th>verdict</th>"
+                "</tr></thead><tbody>" + claim_rows(linked, results, values, True) +
+                "</tbody></table>") if linked else ""
+        wide = " wide" if script in ("eq2_6",) else ""
+        figs.append(
+            f"<div class='fig{wide}' id='fig-{html.escape(script)}'>"
+            f"<img src='{html.escape(script)}.png' alt='{html.escape(fg.get('title', script))}'>"
+            f"<div class='text'><h3>{html.escape(fg.get('title', script))}</h3>"
+            f"<p><b>Thesis ({html.escape(fg.get('thesis', ''))}):</b> {html.escape(fg.get('shows', ''))}</p>"
+            f"<blockquote>{html.escape(fg.get('quote', ''))}</blockquote>"
+            f"<p><b>Ours:</b> the figure, from <code>reports/{html.escape(script)}.py</code>; "
+            f"numbers in <code>values/{html.escape(script)}.json</code>.</p>{mini}{table}</div></div>")
+
+    perf_table = (staging / "performance_table.html").read_text()
+    stab_table = (staging / "stability_table.html").read_text()
+    v = values.by_script
+    scale = v.get("eq2_6", {}).get("velocity_scale_value")
+    quick_banner = ("<div class='quick'>Quick run: fewer sweep points than the full study; fits "
+                    "and verdicts may differ from a full run.</div>") if quick else ""
+    ledger_rows = claim_rows(claims, results, values, False)
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<title>slipwalk — thesis reproduction report{' (quick run)' if quick else ''}</title>
+<style>{CSS}</style></head><body>
+<header><h1>slipwalk — reproducing <i>Efficient Modeling of Multi-legged Locomotion with Slipping</i>{' — quick run' if quick else ''}</h1>
+<div class="sub">Chapter 2: the inchworm crawling model (§2.1–2.4). Every figure from data, every number from a run; verdicts computed from the claims ledger <code>data/thesis/claims.toml</code>.</div></header>
+<nav><a href="#ch2">Chapter 2</a><a href="#ledger">Claims ledger</a><a href="#performance">Performance</a><a href="#stability">Stability</a><a href="#provenance">Provenance</a></nav>
+<main>
+{quick_banner}
+<section id="ch2"><h2>Chapter 2 — inchworm crawling model</h2>
+<p>Two point masses m = {c.m:g} kg and M = {c.M:g} kg on a line, Coulomb friction (μ_s = μ unless
+stated), a constant actuator force F that pushes them apart to L_max = {c.L_MAX:g} m and pulls
+them together to L_min = {c.L_MIN:g} m; at each length limit a plastic collision and an
+instantaneous swap of the masses. Regime I: F ≤ μMg (M held by static friction); regime II:
+F &gt; μMg. Our reference is the closed-form fixed point of the stroke map (§2.4, with eq. 2.9
+corrected); simulations are event-driven and exact between events unless a method says
+otherwise. Nondimensional speeds use ṽ = v/√(L_max g){f' (√(L_max g) = {scale:.4f} m/s)' if scale else ''} — the only reading of the
+thesis' "√(Lg)" that reproduces its own numbers (ledger entry
+<a href="#claim-2.3.1.1-velocity-unit">2.3.1.1-velocity-unit</a>); √(2 g L_max) does not.</p>
+<p>Verdicts: {summary}</p>
+{''.join(figs)}
+</section>
+<section id="ledger"><h2>Claims ledger</h2>
+<p class="small">Every quantitative statement of chapter 2, §2.1–2.4 (§2.5 is not covered yet). "ours" is
+computed by the scripts from the data; the verdict is computed from the rule in the criterion column.</p>
+<table class="data"><thead><tr><th>id</th><th>where</th><th>statement</th><th>thesis</th><th>ours</th><th>verdict</th><th>criterion, explanation, notes</th></tr></thead><tbody>
+{ledger_rows}
+</tbody></table></section>
+<section id="performance"><h2>Performance — what accuracy costs</h2>
+<div class="fig wide"><img src="performance.png" alt="work-precision">
+<div class="text"><p>Relative error against the closed form vs wall time and vs right-hand-side
+evaluations, each method over its tolerances, at F = 45 N, μ = 1 (fast convergence) and
+F = 73.575 N, μ = 0.05 (slowest convergence of the range). The table gives the cheapest run of each
+method that reaches the target error.</p>{perf_table}</div></div></section>
+<section id="stability"><h2>Stability — hard cases</h2>
+<div class="fig wide"><img src="stability.png" alt="hard cases">
+<div class="text"><p>Each hard case run by every method; the closed form ("exact") is the reference.
+A method that is not built in this configuration is listed as such.</p>{stab_table}</div></div></section>
+<section id="provenance"><h2>Provenance</h2>
+{provenance_html(data, script_times, quick)}
+</section>
+</main></body></html>
+"""
+
+
+# ---------------------------------------------------------------------------------------------
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--data", required=True, type=Path)
+    ap.add_argument("--out", required=True, type=Path)
+    ap.add_argument("--quick", action="store_true", help="mark the page as a quick run")
+    ap.add_argument("--claims", type=Path, default=c.LEDGER, help="the claims ledger (TOML)")
+    ap.add_argument("--jobs", type=int, default=min(4, os.cpu_count() or 1))
+    args = ap.parse_args()
+
+    if not (args.data / c.STUDY).is_dir():
+        print(f"build_report.py: error: {args.data / c.STUDY}: data folder missing "
+              "(run `slipwalk reproduce` first)", file=sys.stderr)
+        return 2
+    ledger = c.load_ledger(args.claims.resolve())
+    args.out.mkdir(parents=True, exist_ok=True)
+    staging = args.out / f".staging-{os.getpid()}"
+    if staging.exists():
+        shutil.rmtree(staging)
+    (staging / "values").mkdir(parents=True)
+    try:
+        times = {}
+        failed = []
+        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+            for name, rc, output, dt in pool.map(lambda s: run_script(s, args.data, staging, args.claims.resolve()),
+                                                 SCRIPTS):
+                times[name] = dt
+                if rc != 0:
+                    failed.append((name, rc, output))
+                elif output:
+                    print(f"[{name}] {output}", file=sys.stderr)
+        if failed:
+            for name, rc, output in failed:
+                print(f"build_report.py: error: {name}.py failed (exit {rc}):\n{output}",
+                      file=sys.stderr)
+            return 1
+
+        values = Values(staging / "values")
+        ids = [cl.get("id") for cl in ledger.get("claim", [])]
+        dup = {i for i in ids if ids.count(i) > 1}
+        if dup or None in ids:
+            print(f"build_report.py: error: {args.claims}: duplicate or missing ids {sorted(map(str, dup))}",
+                  file=sys.stderr)
+            return 2
+        try:
+            results = {cl["id"]: evaluate(cl, values) for cl in ledger.get("claim", [])}
+        except ValueError as e:
+            print(f"build_report.py: error: {args.claims}: {e}", file=sys.stderr)
+            return 2
+        page = build_html(ledger, results, values, staging, args.data, times, args.quick)
+        if values.missing:
+            print("build_report.py: warning: values referenced by the ledger but not measured: "
+                  + ", ".join(sorted(set(values.missing))), file=sys.stderr)
+        verdicts = [{**r, "statement": next(cl.get("statement") for cl in ledger["claim"]
+                                             if cl["id"] == r["id"])} for r in results.values()]
+        c.atomic_write_text(staging / "values" / "claims.json",
+                            json.dumps(c.to_jsonable(verdicts), indent=1) + "\n")
+
+        # Move the results into OUT; index.html last, so it never points at missing files.
+        (args.out / "values").mkdir(exist_ok=True)
+        for old in (args.out / "values").glob("*.json"):
+            old.unlink()
+        for p in sorted(staging.rglob("*")):
+            if p.is_file():
+                dest = args.out / p.relative_to(staging)
+                dest.parent.mkdir(parents=True, exist_ok=True)
+                os.replace(p, dest)
+        c.atomic_write_text(args.out / "index.html", page)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    counts: dict[str, int] = {}
+    for r in results.values():
+        counts[r["verdict"]] = counts.get(r["verdict"], 0) + 1
+    print(f"report: {args.out / 'index.html'} — " +
+          ", ".join(f"{k}: {n}" for k, n in sorted(counts.items())))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
