@@ -192,6 +192,7 @@ body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0;color:#2
 header{background:#1f3040;color:#fff;padding:14px 28px}
 header h1{margin:0;font-size:1.35em}
 header .sub{color:#c8d4de;font-size:.9em}
+header code{background:#34495e;color:#fff}
 nav{position:sticky;top:0;background:#2c4255;padding:6px 28px;z-index:2}
 nav a{color:#fff;margin-right:18px;text-decoration:none;font-size:.95em}
 nav a:hover{text-decoration:underline}

@@ -96,6 +96,9 @@ def main():
             values[f"k_{reg}_{key}"] = fit["k"]
             values[f"b_{reg}_{key}"] = fit["b"]
             values[f"r2_{reg}_{key}"] = fit["r2"]
+            # sensitivity to the grid: the same fit without the lowest force
+            drop = c.linfit(Fa[Fa > Fa.min()], vaa[Fa > Fa.min()]) if Fa.size else fit
+            values[f"r2_{reg}_{key}_without_lowest_F"] = drop["r2"]
             if fit["r2"] is None:
                 values[f"r2_{reg}_{key}_reason"] = f"only {fit['n']} point(s) in regime {reg}: a line needs 3"
             else:

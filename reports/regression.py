@@ -132,13 +132,14 @@ def main():
     c.save_figure(fig, args.out, NAME)
 
     # ---- table fragment
-    cells = ["<table class='data'><thead><tr><th>μ</th><th>points</th><th>F range [N]</th>"
+    cells = [f"<details><summary>regime II line for each of the {len(rows)} values of μ</summary>"
+             "<table class='data'><thead><tr><th>μ</th><th>points</th><th>F range [N]</th>"
              "<th>k [(m/s)/N]</th><th>b [m/s]</th><th>R²</th></tr></thead><tbody>"]
     for r in rows:
         cells.append(f"<tr><td>{r['mu']:g}</td><td>{r['n']}</td>"
                      f"<td>{r['F_min']:.3g}–{r['F_max']:.3g}</td><td>{c.fmt(r['k'], 5)}</td>"
                      f"<td>{c.fmt(r['b'], 5)}</td><td>{c.fmt(r['r2'], 5)}</td></tr>")
-    cells.append("</tbody></table>")
+    cells.append("</tbody></table></details>")
     fits = [
         ("k = k2 μ² + k0 (thesis' form)", f"k2 = {c.fmt(k2)}, k0 = {c.fmt(k0)}", k_r2,
          f"k2 = {tk2:g}, k0 = {tk0:g}, R² {c.thesis('2.3.1-k-R2'):g}"),
