@@ -1,7 +1,322 @@
+// slipwalk inchworm vss | trace (DESIGN.md: Command line).
+#include <gsl/gsl_errno.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
 #include "cli/commands.hpp"
+#include "core/atomic_file.hpp"
+#include "core/csv.hpp"
+#include "core/error.hpp"
+#include "inchworm/params.hpp"
+#include "inchworm/trace.hpp"
+#include "inchworm/vss.hpp"
 
 namespace slipwalk::cli {
-void add_inchworm_command(CLI::App& app) {
-  app.add_subcommand("inchworm", "(not yet implemented)");
+
+namespace {
+
+using core::InputError;
+
+/// A finite number, the whole text: rejects "", "1.0x", "nan", "inf", "abc" naming the option.
+double parse_number(const std::string& option, const std::string& text) {
+  std::string_view s = text;
+  if (s.size() > 1 && s.front() == '+' && s[1] != '-' && s[1] != '+') {
+    s.remove_prefix(1);
+  }
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (s.empty() || ec == std::errc::invalid_argument || end != s.data() + s.size()) {
+    throw InputError(option, "expected a number, got '" + text + "'");
+  }
+  if (ec == std::errc::result_out_of_range) {
+    throw InputError(option, "'" + text + "' is out of the range of a double");
+  }
+  if (!std::isfinite(value)) {
+    throw InputError(option, "expected a finite number, got '" + text + "'");
+  }
+  return value;
 }
+
+long long parse_integer(const std::string& option, const std::string& text) {
+  long long value = 0;
+  const char* first = text.data() + (text.size() > 1 && text.front() == '+' ? 1 : 0);
+  const auto [end, ec] = std::from_chars(first, text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
+    throw InputError(option, "expected an integer, got '" + text + "'");
+  }
+  return value;
+}
+
+/// The model's options, shared by vss and trace; kept as text and parsed by hand.
+struct ParamOptions {
+  std::string force, mu, mu_s, m, M, L_min, L_max, g;
+
+  void add(CLI::App& app) {
+    app.add_option("--force", force, "actuator force F in N (> mu_s m g)")
+        ->type_name("NUMBER")
+        ->required();
+    app.add_option("--mu", mu, "dynamic friction coefficient (> 0)")
+        ->type_name("NUMBER")
+        ->required();
+    app.add_option("--mu-s", mu_s, "static friction coefficient (>= mu; default mu)")
+        ->type_name("NUMBER");
+    app.add_option("--m", m, "small mass in kg (default 1)")->type_name("NUMBER");
+    app.add_option("--M", M, "large mass in kg (> m; default 1.5)")->type_name("NUMBER");
+    app.add_option("--L-min", L_min, "shortest actuator length in m (default 0.02)")
+        ->type_name("NUMBER");
+    app.add_option("--L-max", L_max, "longest actuator length in m (default 0.5)")
+        ->type_name("NUMBER");
+    app.add_option("--g", g, "gravitational acceleration in m/s^2 (default 9.81)")
+        ->type_name("NUMBER");
+  }
+
+  [[nodiscard]] inchworm::Params params(const CLI::App& app) const {
+    inchworm::Params p;
+    p.F = parse_number("--force", force);
+    p.mu = parse_number("--mu", mu);
+    const auto given = [&](const char* name) { return app.count(name) > 0; };
+    if (given("--mu-s")) {
+      p.mu_s = parse_number("--mu-s", mu_s);
+    }
+    if (given("--m")) {
+      p.m = parse_number("--m", m);
+    }
+    if (given("--M")) {
+      p.M = parse_number("--M", M);
+    }
+    if (given("--L-min")) {
+      p.L_min = parse_number("--L-min", L_min);
+    }
+    if (given("--L-max")) {
+      p.L_max = parse_number("--L-max", L_max);
+    }
+    if (given("--g")) {
+      p.g = parse_number("--g", g);
+    }
+    inchworm::validate(p);
+    return p;
+  }
+};
+
+inchworm::Method parse_method(const std::string& name) {
+  const auto m = inchworm::parse_method(name);
+  if (!m) {
+    throw InputError("--method",
+                     "unknown method '" + name + "'; expected " + inchworm::method_names());
+  }
+  return *m;
+}
+
+double parse_rtol(const std::string& text) {
+  const double rtol = parse_number("--rtol", text);
+  if (!(rtol > 0.0 && rtol < 1.0)) {
+    throw InputError("--rtol", "must be in (0, 1), got '" + text + "'");
+  }
+  return rtol;
+}
+
+struct VssCommand {
+  ParamOptions params;
+  std::string method = "exact";
+  std::string rtol = "1e-10";
+  std::string stop = "estimate";
+  std::string estimator = "cycle";
+  std::string max_strokes = "4000000";
+  bool json = false;
+
+  void run(const CLI::App& app) const {
+    // Every input is checked before anything is computed.
+    const inchworm::Params p = params.params(app);
+    const inchworm::Method m = parse_method(method);
+    inchworm::VssOptions opt;
+    opt.rtol = parse_rtol(rtol);
+    if (stop == "estimate") {
+      opt.stop = inchworm::StopRule::kEstimatedError;
+    } else if (stop == "difference") {
+      opt.stop = inchworm::StopRule::kConsecutiveDifference;
+    } else {
+      throw InputError("--stop", "unknown rule '" + stop + "'; expected estimate|difference");
+    }
+    if (estimator == "cycle") {
+      opt.estimator = inchworm::Estimator::kCycleAverage;
+    } else if (estimator == "running") {
+      opt.estimator = inchworm::Estimator::kRunningMean;
+    } else {
+      throw InputError("--estimator",
+                       "unknown estimator '" + estimator + "'; expected cycle|running");
+    }
+    opt.max_strokes = parse_integer("--max-strokes", max_strokes);
+    if (opt.max_strokes < 8 || opt.max_strokes > 1'000'000'000LL) {
+      throw InputError("--max-strokes", "must be from 8 to 1e9, got '" + max_strokes + "'");
+    }
+
+    gsl_set_error_handler_off();
+    const inchworm::VssResult r = inchworm::solve_vss(p, m, opt);
+    const bool simulated = inchworm::is_simulation(m);
+    // A solve that never produced a number shows none (n/a, JSON null) rather than zeros.
+    const bool nothing = !r.converged && (!simulated || r.strokes == 0);
+    if (json) {
+      nlohmann::json out = {
+          {"v_ss", r.v_ss},
+          {"period", r.period},
+          {"c0", r.c0},
+          {"regime", inchworm::regime_name(r.regime)},
+          {"method", inchworm::method_name(m)},
+          {"F", p.F},
+          {"mu", p.mu},
+          {"mu_s", p.static_mu()},
+          {"rtol", opt.rtol},
+          {"est_error", r.est_error},
+          {"last_difference", r.last_difference},
+          {"contraction", r.contraction},
+          {"converged", r.converged},
+          {"strokes", r.strokes},
+          {"steps", r.stats.steps},
+          {"rhs_evals", r.stats.rhs_evals},
+          {"wall_s", r.wall_s},
+          {"message", r.message},
+      };
+      for (auto& [key, value] : out.items()) {
+        const bool result = key == "v_ss" || key == "period" || key == "c0" ||
+                            key == "contraction" || key == "est_error" ||
+                            key == "last_difference" || key == "regime";
+        if ((nothing && result) ||
+            (value.is_number_float() && !std::isfinite(value.get<double>()))) {
+          value = nullptr;  // JSON has no NaN
+        }
+      }
+      std::cout << out.dump(2) << "\n";
+    } else {
+      const auto line = [](const char* key, const std::string& value, const char* unit = "") {
+        std::printf("%-12s %s%s\n", key, value.c_str(), unit);
+      };
+      const auto num = [&](double v) {
+        return nothing ? std::string("n/a") : core::format_double(v);
+      };
+      line("method", inchworm::method_name(m));
+      line("v_ss", num(r.v_ss), " m/s");
+      line("period", num(r.period), " s");
+      line("c0", num(r.c0), " m/s");
+      line("regime", nothing ? "n/a" : inchworm::regime_name(r.regime));
+      line("contraction", num(r.contraction), " per cycle");
+      if (simulated) {
+        line("est_error", num(r.est_error), " (relative)");
+        line("strokes", std::to_string(r.strokes));
+        line("converged", r.converged ? "yes" : "no");
+      }
+      line("wall_s", core::format_double(r.wall_s), " s");
+      if (!r.converged) {
+        line("message", r.message);
+      }
+      std::fflush(stdout);
+    }
+    if (!r.converged) {
+      throw core::ComputationError(std::string("inchworm vss --method ") +
+                                   inchworm::method_name(m) + ": " + r.message);
+    }
+  }
+};
+
+struct TraceCommand {
+  ParamOptions params;
+  std::string method = "analytic";
+  std::string cycles = "6";
+  std::string dt = "1e-3";
+  std::string rtol = "1e-10";
+  std::string out;
+
+  void run(const CLI::App& app) const {
+    const inchworm::Params p = params.params(app);
+    const inchworm::Method m = parse_method(method);
+    inchworm::TraceOptions opt;
+    const long long n = parse_integer("--cycles", cycles);
+    if (n < 1 || n > 10000) {
+      throw InputError("--cycles", "must be from 1 to 10000, got '" + cycles + "'");
+    }
+    opt.cycles = static_cast<int>(n);
+    opt.sample_dt = parse_number("--dt", dt);
+    if (!(opt.sample_dt > 0.0)) {
+      throw InputError("--dt", "must be positive, got '" + dt + "'");
+    }
+    opt.rtol = parse_rtol(rtol);
+    if (out.empty()) {
+      throw InputError("--out", "expected a file name (or - for stdout)");
+    }
+    gsl_set_error_handler_off();
+    if (out == "-") {
+      inchworm::write_trace(p, m, opt, std::cout);
+      std::cout.flush();
+      return;
+    }
+    const std::filesystem::path path(out);
+    if (std::filesystem::is_directory(path)) {
+      throw InputError("--out", "'" + out + "' is a directory");
+    }
+    std::unique_ptr<core::AtomicFile> file;
+    try {
+      file = std::make_unique<core::AtomicFile>(path);
+    } catch (const InputError&) {
+      throw InputError("--out", "cannot write '" + out + "'");
+    }
+    inchworm::write_trace(p, m, opt, file->stream());
+    file->commit();
+  }
+};
+
+}  // namespace
+
+void add_inchworm_command(CLI::App& app) {
+  auto* inchworm = app.add_subcommand("inchworm", "the inchworm of thesis chapter 2");
+  inchworm->require_subcommand(1);
+
+  auto vss = std::make_shared<VssCommand>();
+  auto* v = inchworm->add_subcommand("vss", "steady-state CoM speed and stroke period");
+  vss->params.add(*v);
+  v->add_option("--method", vss->method,
+                std::string("exact (closed form, default), rootfind, or an integrator: ") +
+                    inchworm::method_names())
+      ->type_name("NAME");
+  v->add_option("--rtol", vss->rtol,
+                "integrators: step tolerance and convergence target, in (0, 1) (default 1e-10)")
+      ->type_name("NUMBER");
+  v->add_option("--stop", vss->stop,
+                "integrators: estimate (remaining-error estimate, default) | difference "
+                "(consecutive cycles, the thesis' rule)")
+      ->type_name("RULE");
+  v->add_option("--estimator", vss->estimator,
+                "integrators: cycle (last cycle average, default) | running (mean from rest)")
+      ->type_name("NAME");
+  v->add_option("--max-strokes", vss->max_strokes,
+                "integrators: give up (exit 1) after this many strokes (default 4000000)")
+      ->type_name("INT");
+  v->add_flag("--json", vss->json, "print one JSON object");
+  v->callback([vss, v] { vss->run(*v); });
+
+  auto trace = std::make_shared<TraceCommand>();
+  auto* t = inchworm->add_subcommand("trace", "time series of the masses and the CoM from rest");
+  trace->params.add(*t);
+  t->add_option(
+       "--method", trace->method,
+       std::string("analytic (default), cvode, odeint or gsl; of ") + inchworm::method_names())
+      ->type_name("NAME");
+  t->add_option("--cycles", trace->cycles, "cycles (two strokes each), 1 to 10000 (default 6)")
+      ->type_name("INT");
+  t->add_option("--dt", trace->dt, "sampling interval of the exact method in s (default 1e-3)")
+      ->type_name("NUMBER");
+  t->add_option("--rtol", trace->rtol, "integrators' tolerance, in (0, 1) (default 1e-10)")
+      ->type_name("NUMBER");
+  t->add_option("--out", trace->out, "CSV file to write, - for stdout")
+      ->type_name("FILE")
+      ->required();
+  t->callback([trace, t] { trace->run(*t); });
+}
+
 }  // namespace slipwalk::cli

@@ -1,0 +1,423 @@
+#include "sweeps/point_functions.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include "core/csv.hpp"
+#include "core/error.hpp"
+#include "events/exact_backend.hpp"
+#include "inchworm/closed_form.hpp"
+#include "inchworm/instant_swap.hpp"
+#include "inchworm/params.hpp"
+#include "inchworm/simulate.hpp"
+#include "inchworm/vss.hpp"
+
+namespace slipwalk::sweeps {
+
+namespace {
+
+using core::InputError;
+using inchworm::Method;
+using inchworm::Params;
+
+/// Typed access to a point's inputs; rejects keys the point function does not take.
+class Reader {
+ public:
+  Reader(const Point& p, std::string_view kind, const std::vector<std::string_view>& accepted)
+      : point_(p) {
+    for (const auto& [key, value] : p.values) {
+      if (std::find(accepted.begin(), accepted.end(), key) == accepted.end()) {
+        std::string list;
+        for (auto a : accepted) {
+          list += (list.empty() ? "" : ", ") + std::string(a);
+        }
+        throw InputError(value.origin, "unknown key '" + key + "' for kind " + std::string(kind) +
+                                           "; expected one of " + list);
+      }
+    }
+  }
+
+  [[nodiscard]] bool has(std::string_view key) const { return point_.find(key) != nullptr; }
+
+  [[noreturn]] void fail(std::string_view key, const std::string& what) const {
+    const Value* v = point_.find(key);
+    throw InputError(v != nullptr ? v->origin : point_.source,
+                     std::string(key) + ": " + what + " (point " + std::to_string(point_.id) + ")");
+  }
+
+  [[nodiscard]] std::optional<double> number(std::string_view key) const {
+    const Value* v = point_.find(key);
+    if (v == nullptr) {
+      return std::nullopt;
+    }
+    if (!v->is_number()) {
+      fail(key, "expected a number, got " + v->repr());
+    }
+    return v->number();
+  }
+  [[nodiscard]] double number(std::string_view key, double fallback) const {
+    return number(key).value_or(fallback);
+  }
+
+  [[nodiscard]] std::optional<std::string> text(std::string_view key) const {
+    const Value* v = point_.find(key);
+    if (v == nullptr) {
+      return std::nullopt;
+    }
+    if (v->is_number()) {
+      fail(key, "expected a string, got " + v->repr());
+    }
+    return v->text();
+  }
+
+  [[nodiscard]] long long integer(std::string_view key, long long fallback, long long lo,
+                                  long long hi) const {
+    const auto v = number(key);
+    if (!v) {
+      return fallback;
+    }
+    if (*v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi)) {
+      fail(key, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                    ", got " + core::format_double(*v));
+    }
+    return static_cast<long long>(*v);
+  }
+
+  [[nodiscard]] const Point& point() const { return point_; }
+
+ private:
+  const Point& point_;
+};
+
+// --- the inchworm's inputs ----------------------------------------------------------------------
+
+const std::vector<std::string_view> kParamKeys = {"m", "M", "L_min", "L_max", "g", "mu", "mu_s"};
+const std::vector<std::string_view> kForceKeys = {"F",    "F_frac",      "f_tilde",
+                                                  "F_lo", "F_lo_factor", "F_max"};
+
+std::vector<std::string_view> keys(std::initializer_list<std::vector<std::string_view>> groups) {
+  std::vector<std::string_view> out;
+  for (const auto& g : groups) {
+    out.insert(out.end(), g.begin(), g.end());
+  }
+  return out;
+}
+
+struct InchwormInputs {
+  Params p;
+  Method method = Method::kExact;
+  inchworm::VssOptions opt;
+  double F_lo = 0.0;   ///< N, the bottom of the F_frac range
+  double F_max = 0.0;  ///< N, the top of the F_frac range
+  std::string_view force_key;
+};
+
+/// The F_frac range [F_lo, F_max] of a point (defaults where the keys are absent).
+void force_range(const Reader& r, InchwormInputs& in) {
+  const Params& p = in.p;
+  double base = p.static_mu() * p.m * p.g;
+  if (const Value* lo = r.point().find("F_lo")) {
+    if (lo->is_number()) {
+      base = lo->number();
+    } else if (lo->text() == "muMg") {
+      base = p.static_mu() * p.M * p.g;
+    } else if (lo->text() != "mumg") {
+      r.fail("F_lo", "expected \"mumg\" (mu_s m g), \"muMg\" (mu_s M g) or a force in N, got " +
+                         lo->repr());
+    }
+  }
+  const double factor = r.number("F_lo_factor", 1.0);
+  if (!(factor > 0.0)) {
+    r.fail("F_lo_factor", "must be positive, got " + core::format_double(factor));
+  }
+  in.F_lo = base * factor;
+  in.F_max = r.number("F_max", 5.0 * p.M * p.g);
+}
+
+/// Params, the force and the method of an inchworm point; throws InputError naming the key.
+InchwormInputs read_inchworm(const Reader& r, bool solver_keys) {
+  InchwormInputs in;
+  Params& p = in.p;
+  p.m = r.number("m", p.m);
+  p.M = r.number("M", p.M);
+  p.L_min = r.number("L_min", p.L_min);
+  p.L_max = r.number("L_max", p.L_max);
+  p.g = r.number("g", p.g);
+  p.mu = r.number("mu", p.mu);
+  p.mu_s = r.number("mu_s", p.mu_s);
+
+  int given = 0;
+  for (auto key : {"F", "F_frac", "f_tilde"}) {
+    if (r.has(key)) {
+      ++given;
+      in.force_key = key;
+    }
+  }
+  if (given != 1) {
+    r.fail(given == 0 ? "F" : in.force_key,
+           "give the force as exactly one of F (N), F_frac or f_tilde");
+  }
+  for (auto key : {"F_lo", "F_lo_factor", "F_max"}) {
+    if (r.has(key) && in.force_key != "F_frac") {
+      r.fail(key, "only used with F_frac");
+    }
+  }
+  force_range(r, in);
+  if (in.force_key == "F") {
+    p.F = *r.number("F");
+  } else if (in.force_key == "f_tilde") {
+    const double f = *r.number("f_tilde");
+    if (!(f > 0.0)) {
+      r.fail("f_tilde", "must be positive, got " + core::format_double(f));
+    }
+    p.F = f * p.mu * p.M * p.g;
+  } else {
+    const double frac = *r.number("F_frac");
+    if (!(frac >= 0.0 && frac <= 1.0)) {
+      r.fail("F_frac", "must be in [0, 1], got " + core::format_double(frac));
+    }
+    if (!(in.F_max > in.F_lo)) {
+      r.fail(r.has("F_max") ? "F_max" : "F_lo",
+             "F_max = " + core::format_double(in.F_max) +
+                 " N must exceed F_lo = " + core::format_double(in.F_lo) + " N");
+    }
+    p.F = in.F_lo + frac * (in.F_max - in.F_lo);
+  }
+  // The library's checks name command-line options; name the spec's keys instead.
+  try {
+    inchworm::validate(p);
+  } catch (const InputError& e) {
+    static const std::array<std::pair<std::string_view, std::string_view>, 7> kOptionKey{{
+        {"--m", "m"},
+        {"--M", "M"},
+        {"--L-min", "L_min"},
+        {"--L-max", "L_max"},
+        {"--g", "g"},
+        {"--mu", "mu"},
+        {"--mu-s", "mu_s"},
+    }};
+    std::string_view key = in.force_key;
+    for (const auto& [option, k] : kOptionKey) {
+      if (e.where() == option) {
+        key = k;
+      }
+    }
+    const std::string what = e.what();
+    r.fail(key, what.substr(std::min(what.size(), e.where().size() + 2)));
+  }
+
+  if (const auto name = r.text("method")) {
+    const auto m = inchworm::parse_method(*name);
+    if (!m) {
+      r.fail("method", "unknown method '" + *name + "'; expected " + inchworm::method_names());
+    }
+    in.method = *m;
+  }
+  if (!solver_keys) {
+    return in;
+  }
+  in.opt.rtol = r.number("rtol", in.opt.rtol);
+  if (!(in.opt.rtol > 0.0 && in.opt.rtol < 1.0)) {
+    r.fail("rtol", "must be in (0, 1), got " + core::format_double(in.opt.rtol));
+  }
+  if (const auto stop = r.text("stop")) {
+    if (*stop == "estimate") {
+      in.opt.stop = inchworm::StopRule::kEstimatedError;
+    } else if (*stop == "difference") {
+      in.opt.stop = inchworm::StopRule::kConsecutiveDifference;
+    } else {
+      r.fail("stop", "expected \"estimate\" or \"difference\", got '" + *stop + "'");
+    }
+  }
+  if (const auto estimator = r.text("estimator")) {
+    if (*estimator == "cycle") {
+      in.opt.estimator = inchworm::Estimator::kCycleAverage;
+    } else if (*estimator == "running") {
+      in.opt.estimator = inchworm::Estimator::kRunningMean;
+    } else {
+      r.fail("estimator", "expected \"cycle\" or \"running\", got '" + *estimator + "'");
+    }
+  }
+  in.opt.max_strokes = r.integer("max_strokes", in.opt.max_strokes, 8, 1'000'000'000LL);
+  return in;
+}
+
+double f_tilde_of(const Params& p) { return p.F / (p.mu * p.M * p.g); }
+double f_frac_of(const InchwormInputs& in) {
+  return in.F_max > in.F_lo ? (in.p.F - in.F_lo) / (in.F_max - in.F_lo) : std::nan("");
+}
+
+// --- inchworm_vss -------------------------------------------------------------------------------
+
+const std::vector<std::string_view> kVssKeys = keys(
+    {kParamKeys, kForceKeys, {"method", "rtol", "stop", "estimator", "max_strokes", "repeats"}});
+
+struct VssInputs {
+  InchwormInputs in;
+  long long repeats = 1;  ///< solves; wall_s is their median
+};
+
+VssInputs read_vss(const Point& point) {
+  const Reader r(point, "inchworm_vss", kVssKeys);
+  VssInputs v{read_inchworm(r, true), 1};
+  v.repeats = r.integer("repeats", 1, 1, 1000);
+  return v;
+}
+
+PointResult run_vss(const Point& point) {
+  const auto [in, repeats] = read_vss(point);
+  inchworm::VssResult s;
+  std::vector<double> times;
+  for (long long k = 0; k < repeats; ++k) {
+    s = inchworm::solve_vss(in.p, in.method, in.opt);
+    times.push_back(s.wall_s);
+  }
+  std::sort(times.begin(), times.end());
+  s.wall_s = times.size() % 2 == 1 ? times[times.size() / 2]
+                                   : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
+  // A solve that never produced a number reports NaN rather than zeros.
+  const bool nothing = !s.converged && inchworm::is_simulation(in.method) && s.strokes == 0;
+  const bool closed_form_failed = !s.converged && !inchworm::is_simulation(in.method);
+  const double nan = std::nan("");
+  const auto shown = [&](double v) { return nothing || closed_form_failed ? nan : v; };
+  const inchworm::Regime regime =
+      nothing || closed_form_failed ? inchworm::regime_of(in.p) : s.regime;
+  Row row{
+      point.id,
+      in.p.mu,
+      in.p.static_mu(),
+      in.p.F,
+      f_tilde_of(in.p),
+      f_frac_of(in),
+      std::string(inchworm::method_name(in.method)),
+      in.opt.rtol,
+      std::string(in.opt.stop == inchworm::StopRule::kEstimatedError ? "estimate" : "difference"),
+      std::string(in.opt.estimator == inchworm::Estimator::kCycleAverage ? "cycle" : "running"),
+      shown(s.v_ss),
+      shown(s.period),
+      shown(s.c0),
+      static_cast<long long>(regime),
+      shown(s.est_error),
+      shown(s.last_difference),
+      shown(s.contraction),
+      s.strokes,
+      static_cast<long long>(s.converged ? 1 : 0),
+      s.stats.steps,
+      s.stats.rhs_evals,
+      s.wall_s,
+      s.message};
+  PointResult out;
+  out.rows.push_back(std::move(row));
+  out.failed = !s.converged;
+  if (out.failed) {
+    out.message = s.message;
+  }
+  return out;
+}
+
+// --- inchworm_convergence -----------------------------------------------------------------------
+
+const std::vector<std::string_view> kConvergenceKeys =
+    keys({kParamKeys, kForceKeys, {"method", "cycles"}});
+
+struct ConvergenceInputs {
+  InchwormInputs in;
+  long long cycles = 0;
+};
+
+ConvergenceInputs read_convergence(const Point& point) {
+  const Reader r(point, "inchworm_convergence", kConvergenceKeys);
+  ConvergenceInputs c;
+  c.in = read_inchworm(r, false);
+  if (r.has("method") && c.in.method != Method::kAnalytic) {
+    r.fail("method",
+           "inchworm_convergence integrates with the exact event-driven backend; "
+           "only \"analytic\" is supported");
+  }
+  c.in.method = Method::kAnalytic;
+  if (!r.has("cycles")) {
+    r.fail("cycles", "required (the number of cycles to simulate)");
+  }
+  c.cycles = r.integer("cycles", 0, 1, 10'000'000);
+  return c;
+}
+
+// Simulates `cycles` cycles from rest with the exact backend and no stopping rule, stroke by
+// stroke as inchworm::steady_state_by_simulation does (same arithmetic, so its cycle averages
+// and running mean are the ones the simulation's estimators see). The running mean is the total
+// CoM displacement over the total time since rest, i.e. the cycle averages weighted by the
+// cycle durations. Errors are relative to the closed form: |V − v_ss| / v_ss.
+PointResult run_convergence(const Point& point) {
+  const ConvergenceInputs c = read_convergence(point);
+  const Params& p = c.in.p;
+  PointResult out;
+  try {
+    const double exact = inchworm::steady_state_closed_form(p).v_ss;
+    const inchworm::InstantSwapSystem sys(p);
+    auto x = sys.rest_state();
+    auto mode = sys.mode_of(x, 1);
+    events::ExactBackend backend;
+    double total_displacement = 0.0;
+    double total_time = 0.0;
+    for (long long cycle = 1; cycle <= c.cycles; ++cycle) {
+      const auto a = inchworm::simulate_stroke(sys, backend, mode, x);
+      const auto b = inchworm::simulate_stroke(sys, backend, mode, x);
+      const double average = (a.displacement + b.displacement) / (a.duration + b.duration);
+      total_displacement += a.displacement + b.displacement;
+      total_time += a.duration + b.duration;
+      const double running = total_displacement / total_time;
+      out.rows.push_back(Row{point.id, p.mu, p.F, std::string("analytic"), cycle, average, running,
+                             exact, std::abs(average - exact) / exact,
+                             std::abs(running - exact) / exact});
+    }
+  } catch (const std::exception& e) {
+    out.failed = true;
+    out.message = e.what();
+  }
+  return out;
+}
+
+const std::vector<PointFunction>& registry() {
+  static const std::vector<PointFunction> functions = {
+      {"inchworm_vss",
+       "steady-state CoM speed of the instant-swap inchworm by any method (one row per point)",
+       {"id",          "mu",        "mu_s",      "F",
+        "f_tilde",     "F_frac",    "method",    "rtol",
+        "stop",        "estimator", "v_ss",      "period",
+        "c0",          "regime",    "est_error", "last_difference",
+        "contraction", "strokes",   "converged", "steps",
+        "rhs_evals",   "wall_s",    "message"},
+       [](const Point& p) { (void)read_vss(p); },
+       run_vss},
+      {"inchworm_convergence",
+       "cycle averages and running mean from rest against the closed form (one row per cycle)",
+       {"id", "mu", "F", "method", "cycle", "cycle_average", "running_mean", "exact", "err_cycle",
+        "err_running"},
+       [](const Point& p) { (void)read_convergence(p); },
+       run_convergence},
+  };
+  return functions;
+}
+
+}  // namespace
+
+const PointFunction* find_point_function(std::string_view name) {
+  for (const auto& f : registry()) {
+    if (f.name == name) {
+      return &f;
+    }
+  }
+  return nullptr;
+}
+
+std::string point_function_names() {
+  std::string out;
+  for (const auto& f : registry()) {
+    out += (out.empty() ? "" : "|") + f.name;
+  }
+  return out;
+}
+
+}  // namespace slipwalk::sweeps

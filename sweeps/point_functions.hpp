@@ -1,0 +1,41 @@
+#pragma once
+// Point functions: what a sweep computes at one point. A spec's `kind` names one of them.
+//
+// Each has fixed output columns (the first is always `id`), a check that validates a point's
+// inputs (throws core::InputError naming the spec file:line:col and the key; the runner checks
+// every point before it runs any, so a bad spec writes nothing) and a run that returns the
+// point's rows. A run never throws for numerical trouble: the rows say what happened and
+// `failed` marks the point, which is counted in the sidecar and does not stop the sweep.
+#include <functional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "sweeps/spec.hpp"
+
+namespace slipwalk::sweeps {
+
+using Cell = std::variant<double, long long, std::string>;
+using Row = std::vector<Cell>;
+
+struct PointResult {
+  std::vector<Row> rows;
+  bool failed = false;
+  std::string message;  ///< why it failed (empty otherwise)
+};
+
+struct PointFunction {
+  std::string name;
+  std::string summary;
+  std::vector<std::string> columns;
+  std::function<void(const Point&)> check;       ///< throws core::InputError
+  std::function<PointResult(const Point&)> run;  ///< for a checked point
+};
+
+/// nullptr if no point function has this name.
+[[nodiscard]] const PointFunction* find_point_function(std::string_view name);
+/// "inchworm_vss|inchworm_convergence", for messages.
+[[nodiscard]] std::string point_function_names();
+
+}  // namespace slipwalk::sweeps

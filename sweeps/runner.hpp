@@ -1,0 +1,65 @@
+#pragma once
+// Runs a sweep: checks every point, computes the points on N threads, checkpoints each finished
+// point to `<name>.partial.csv`, and on completion writes `<data>/<study>/<name>.csv` (rows sorted
+// by id: the same bytes whatever the thread count, wall_s aside) and the provenance sidecar
+// `<name>.json`, both atomically. See sweeps/README.md.
+#include <cstddef>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "sweeps/point_functions.hpp"
+#include "sweeps/spec.hpp"
+
+namespace slipwalk::sweeps {
+
+struct RunOptions {
+  std::filesystem::path data_dir = "data";  ///< outputs go to <data_dir>/<study>/<name>.*
+  unsigned jobs = 0;                        ///< threads; 0 = std::thread::hardware_concurrency()
+  bool resume = false;  ///< keep the points finished in <name>.partial.csv (else discard it)
+  bool timing = true;   ///< false: every wall_s cell is written as 0 (byte-identical reruns)
+  /// Stop after computing this many points in this run (< 0: no limit), leaving the partial
+  /// file for --resume: how the tests interrupt a sweep.
+  long long max_points = -1;
+  std::ostream* progress = nullptr;  ///< progress lines; null: silent
+  double progress_interval_s = 1.0;  ///< at most one progress line per this many seconds
+};
+
+struct RunSummary {
+  std::filesystem::path csv;      ///< the result (written only when complete)
+  std::filesystem::path sidecar;  ///< its provenance
+  std::filesystem::path partial;  ///< the checkpoint (removed when complete)
+  long long points = 0;           ///< in the spec
+  long long resumed = 0;          ///< taken from the checkpoint
+  long long computed = 0;         ///< in this run
+  long long failed = 0;           ///< points whose solve failed (all runs)
+  bool complete = false;          ///< false when max_points stopped the run
+  unsigned jobs = 1;
+  double wall_s = 0.0;  ///< this run
+};
+
+/// A spec whose points are expanded and checked: nothing has been written yet.
+struct PreparedSweep {
+  Spec spec;
+  const PointFunction* function = nullptr;
+  std::vector<Point> points;
+};
+
+/// Expands and checks every point. Throws core::InputError for a bad spec (unknown kind, a key
+/// the point function does not take, a value out of range at any point).
+[[nodiscard]] PreparedSweep prepare(Spec spec);
+
+/// Runs a prepared sweep. Throws core::InputError when --resume finds a checkpoint written for
+/// another spec, core::ComputationError when a point function throws (the checkpoint is kept).
+RunSummary run(const PreparedSweep& sweep, const RunOptions& options);
+
+/// Paths of a sweep's outputs.
+[[nodiscard]] std::filesystem::path csv_path(const Spec& spec, const std::filesystem::path& data);
+[[nodiscard]] std::filesystem::path partial_path(const Spec& spec,
+                                                 const std::filesystem::path& data);
+
+/// An ISO 8601 UTC time stamp (sidecars).
+[[nodiscard]] std::string utc_now();
+
+}  // namespace slipwalk::sweeps

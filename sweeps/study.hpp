@@ -1,0 +1,45 @@
+#pragma once
+// A study (studies/<id>/study.toml, sweeps/README.md): a title, time-series traces of the
+// inchworm, and sweep specs in the same folder. `slipwalk reproduce` runs them all.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "inchworm/params.hpp"
+#include "inchworm/trace.hpp"
+#include "inchworm/vss.hpp"
+#include "sweeps/spec.hpp"
+
+namespace slipwalk::sweeps {
+
+struct TraceJob {
+  std::string name;  ///< output stem: <data>/<study>/<name>.csv
+  inchworm::Params params;
+  inchworm::Method method = inchworm::Method::kAnalytic;
+  inchworm::TraceOptions options;
+  std::string origin;     ///< file:line:col of its [[trace]] table
+  nlohmann::json source;  ///< the table as JSON (sidecar)
+};
+
+struct Study {
+  std::string id;  ///< the folder name, also the data folder of its traces
+  std::filesystem::path dir;
+  std::string title;
+  std::vector<TraceJob> traces;
+  std::vector<std::filesystem::path> sweeps;  ///< spec files, in the order listed
+};
+
+/// Reads <dir>/study.toml. Throws core::InputError (file:line:col) for a malformed file, an
+/// unknown key, invalid trace parameters or a sweep spec file that does not exist.
+[[nodiscard]] Study load_study(const std::filesystem::path& dir);
+
+/// The study folders under `studies_dir` (those holding a study.toml), sorted by name.
+[[nodiscard]] std::vector<std::filesystem::path> find_studies(
+    const std::filesystem::path& studies_dir);
+
+/// Writes <data>/<study>/<name>.csv (inchworm::write_trace) and its sidecar <name>.json,
+/// atomically. Returns the CSV's path.
+std::filesystem::path write_trace_job(const Study& study, const TraceJob& job,
+                                      const std::filesystem::path& data_dir);
+
+}  // namespace slipwalk::sweeps

@@ -1,0 +1,225 @@
+// `slipwalk inchworm vss|trace`: results against the closed form, and every bad input rejected
+// with exit code 2, a message naming the option and no output file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/command.hpp"
+#include "inchworm/closed_form.hpp"
+#include "inchworm/params.hpp"
+
+namespace slipwalk::testing {
+namespace {
+
+double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST(CliInchworm, VssJsonMatchesClosedForm) {
+  struct Case {
+    std::string force, mu, mu_s;
+  };
+  for (const Case& c : std::vector<Case>{{"45", "1", ""},
+                                         {"12", "1", ""},
+                                         {"73.575", "0.05", ""},
+                                         {"3.5", "0.2", ""},
+                                         {"20", "1", "1.3"}}) {
+    std::vector<std::string> args = {"inchworm", "vss", "--force", c.force, "--mu", c.mu, "--json"};
+    inchworm::Params p;
+    p.F = std::stod(c.force);
+    p.mu = std::stod(c.mu);
+    if (!c.mu_s.empty()) {
+      args.insert(args.end(), {"--mu-s", c.mu_s});
+      p.mu_s = std::stod(c.mu_s);
+    }
+    const CommandResult r = run_slipwalk(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const auto j = nlohmann::json::parse(r.out);
+    const inchworm::SteadyState s = inchworm::steady_state_closed_form(p);
+    EXPECT_LE(rel(j.at("v_ss").get<double>(), s.v_ss), 1e-15) << c.force << " " << c.mu;
+    EXPECT_LE(rel(j.at("period").get<double>(), s.period), 1e-15);
+    EXPECT_LE(rel(j.at("c0").get<double>(), s.c0), 1e-15);
+    EXPECT_EQ(j.at("regime"), inchworm::regime_name(s.regime));
+    EXPECT_EQ(j.at("method"), "exact");
+    EXPECT_EQ(j.at("converged"), true);
+    for (const char* key : {"est_error", "strokes", "contraction", "wall_s"}) {
+      EXPECT_TRUE(j.contains(key)) << key;
+    }
+  }
+}
+
+TEST(CliInchworm, VssRegimes) {
+  const auto one = nlohmann::json::parse(
+      run_slipwalk({"inchworm", "vss", "--force", "12", "--mu", "1", "--json"}).out);
+  const auto two = nlohmann::json::parse(
+      run_slipwalk({"inchworm", "vss", "--force", "45", "--mu", "1", "--json"}).out);
+  EXPECT_EQ(one.at("regime"), "I");
+  EXPECT_EQ(two.at("regime"), "II");
+}
+
+TEST(CliInchworm, VssAnalyticIntegratorConverges) {
+  const CommandResult r = run_slipwalk(
+      {"inchworm", "vss", "--force", "45", "--mu", "1", "--method", "analytic", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  inchworm::Params p;
+  p.F = 45;
+  p.mu = 1;
+  EXPECT_EQ(j.at("method"), "analytic");
+  EXPECT_EQ(j.at("converged"), true);
+  EXPECT_GT(j.at("strokes").get<long long>(), 0);
+  EXPECT_LE(j.at("est_error").get<double>(), 1e-10);
+  EXPECT_LE(rel(j.at("v_ss").get<double>(), inchworm::steady_state_closed_form(p).v_ss), 1e-9);
+}
+
+TEST(CliInchworm, VssHumanReadable) {
+  const CommandResult r = run_slipwalk({"inchworm", "vss", "--force", "45", "--mu", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"v_ss", "period", "c0", "regime", "method"}) {
+    EXPECT_NE(r.out.find(key), std::string::npos) << key;
+  }
+  const CommandResult a =
+      run_slipwalk({"inchworm", "vss", "--force", "45", "--mu", "1", "--method", "analytic"});
+  EXPECT_NE(a.out.find("est_error"), std::string::npos);
+  EXPECT_NE(a.out.find("converged"), std::string::npos);
+}
+
+TEST(CliInchworm, VssNotConvergedPrintsResultAndExits1) {
+  const CommandResult r = run_slipwalk({"inchworm", "vss", "--force", "73.575", "--mu", "0.05",
+                                        "--method", "analytic", "--max-strokes", "8", "--json"});
+  EXPECT_EQ(r.exit_code, 1);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("converged"), false);
+  EXPECT_EQ(j.at("strokes"), 8);
+  EXPECT_NE(r.err.find("slipwalk: error: "), std::string::npos);
+  EXPECT_NE(r.err.find("no convergence"), std::string::npos);
+}
+
+struct BadInput {
+  std::vector<std::string> args;  ///< after `inchworm vss|trace`
+  std::string option;             ///< must appear in the message
+  std::string text = "";          ///< and this too, if not empty
+};
+
+const std::vector<std::string> kModel = {"--force", "45", "--mu", "1"};
+
+std::vector<BadInput> bad_model_inputs() {
+  return {
+      {{"--force", "9.81", "--mu", "1"}, "--force"},  // F = mu m g: m never slides
+      {{"--force", "5", "--mu", "1"}, "--force"},
+      {{"--force", "-5", "--mu", "1"}, "--force"},
+      {{"--force", "45", "--mu", "0"}, "--mu"},
+      {{"--force", "45", "--mu", "-0.5"}, "--mu"},
+      {{"--force", "45", "--mu", "abc"}, "--mu", "abc"},
+      {{"--force", "nan", "--mu", "1"}, "--force", "nan"},
+      {{"--force", "inf", "--mu", "1"}, "--force", "inf"},
+      {{"--force", "", "--mu", "1"}, "--force"},
+      {{"--force", "1.0x", "--mu", "1"}, "--force", "1.0x"},
+      {{"--force", "1e999", "--mu", "1"}, "--force"},
+      {{"--mu", "1"}, "--force"},  // missing
+      {{"--force", "45"}, "--mu"},
+      {concat(kModel, {"--mu-s", "0.5"}), "--mu-s"},  // static below dynamic
+      {concat(kModel, {"--M", "0.5"}), "--M"},
+      {concat(kModel, {"--m", "0"}), "--m"},
+      {concat(kModel, {"--L-max", "0.01"}), "--L-max"},
+      {concat(kModel, {"--g", "-9.81"}), "--g"},
+      {concat(kModel, {"--method", "euler"}), "--method", "euler"},
+      {concat(kModel, {"--rtol", "0"}), "--rtol"},
+      {concat(kModel, {"--rtol", "1"}), "--rtol"},
+      {concat(kModel, {"--rtol", "x"}), "--rtol"},
+  };
+}
+
+void expect_rejected(const CommandResult& r, const BadInput& bad) {
+  std::string args;
+  for (const auto& a : bad.args) {
+    args += " [" + a + "]";
+  }
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("slipwalk: error: ", 0), 0U) << args << "\n" << r.err;
+  EXPECT_NE(r.err.find(bad.option), std::string::npos) << args << "\n" << r.err;
+  if (!bad.text.empty()) {
+    EXPECT_NE(r.err.find(bad.text), std::string::npos) << args << "\n" << r.err;
+  }
+}
+
+TEST(CliInchworm, VssRejectsBadInput) {
+  std::vector<BadInput> cases = bad_model_inputs();
+  cases.push_back({concat(kModel, {"--stop", "never"}), "--stop"});
+  cases.push_back({concat(kModel, {"--estimator", "median"}), "--estimator"});
+  cases.push_back({concat(kModel, {"--max-strokes", "2.5"}), "--max-strokes"});
+  for (const BadInput& bad : cases) {
+    const CommandResult r = run_slipwalk(concat({"inchworm", "vss"}, bad.args));
+    expect_rejected(r, bad);
+    EXPECT_EQ(r.out, "");
+  }
+}
+
+TEST(CliInchworm, TraceWritesCsv) {
+  const ScratchDir dir;
+  const auto out = dir / "trace.csv";
+  const CommandResult r = run_slipwalk({"inchworm", "trace", "--force", "45", "--mu", "1",
+                                        "--cycles", "2", "--dt", "0.01", "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = read_text(out);
+  EXPECT_EQ(text.rfind("t,x,y,com,xdot,ydot,comdot,slide_m,slide_M,side,event\n", 0), 0U);
+  EXPECT_NE(text.find("collision_after"), std::string::npos);
+  EXPECT_EQ(files_under(dir.path()), std::vector<std::string>{"trace.csv"});  // no temp files
+
+  const CommandResult s = run_slipwalk({"inchworm", "trace", "--force", "45", "--mu", "1",
+                                        "--cycles", "2", "--dt", "0.01", "--out", "-"});
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_EQ(s.out, text);
+}
+
+TEST(CliInchworm, TraceRejectsBadInputAndWritesNothing) {
+  const ScratchDir dir;
+  const auto out = (dir / "trace.csv").string();
+  std::vector<BadInput> cases = bad_model_inputs();
+  cases.push_back({concat(kModel, {"--cycles", "0"}), "--cycles"});
+  cases.push_back({concat(kModel, {"--cycles", "10001"}), "--cycles"});
+  cases.push_back({concat(kModel, {"--cycles", "two"}), "--cycles", "two"});
+  cases.push_back({concat(kModel, {"--cycles", "1.5"}), "--cycles"});
+  cases.push_back({concat(kModel, {"--dt", "0"}), "--dt"});
+  cases.push_back({concat(kModel, {"--dt", "-1e-3"}), "--dt"});
+  cases.push_back({concat(kModel, {"--dt", "nan"}), "--dt"});
+  for (const BadInput& bad : cases) {
+    const CommandResult r =
+        run_slipwalk(concat(concat({"inchworm", "trace"}, bad.args), {"--out", out}));
+    expect_rejected(r, bad);
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_TRUE(files_under(dir.path()).empty());
+  }
+  // No --out at all.
+  expect_rejected(run_slipwalk(concat({"inchworm", "trace"}, kModel)), {{}, "--out"});
+  // An --out that cannot be written: under a file, or a folder.
+  for (const std::string& bad_out : {std::string("/dev/null/trace.csv"), dir.path().string()}) {
+    const CommandResult r =
+        run_slipwalk(concat(concat({"inchworm", "trace"}, kModel), {"--out", bad_out}));
+    expect_rejected(r, {{"--out", bad_out}, "--out"});
+  }
+  const auto nested = dir / "file_not_folder";
+  write_text(nested, "x");
+  const CommandResult r = run_slipwalk(
+      concat(concat({"inchworm", "trace"}, kModel), {"--out", (nested / "t.csv").string()}));
+  expect_rejected(r, {{}, "--out"});
+  EXPECT_EQ(files_under(dir.path()), std::vector<std::string>{"file_not_folder"});
+}
+
+TEST(CliInchworm, UsageErrorsExit2) {
+  EXPECT_EQ(run_slipwalk({}).exit_code, 2);
+  EXPECT_EQ(run_slipwalk({"inchworm"}).exit_code, 2);
+  EXPECT_EQ(run_slipwalk({"inchworm", "vss", "--force", "45", "--mu", "1", "--bogus"}).exit_code,
+            2);
+  EXPECT_EQ(run_slipwalk({"inchworm", "vss", "--help"}).exit_code, 0);
+}
+
+}  // namespace
+}  // namespace slipwalk::testing

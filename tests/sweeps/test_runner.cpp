@@ -1,0 +1,403 @@
+// The sweep runner: deterministic output whatever the thread count, checkpoints and resume,
+// failed points recorded, the sidecar, and the command line (`slipwalk sweep`, `reproduce`).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "cli/command.hpp"
+#include "core/error.hpp"
+#include "events/exact_backend.hpp"
+#include "inchworm/simulate.hpp"
+#include "sweeps/runner.hpp"
+#include "sweeps/spec.hpp"
+
+namespace slipwalk::sweeps {
+namespace {
+
+using testing::files_under;
+using testing::read_text;
+using testing::run_slipwalk;
+using testing::ScratchDir;
+using testing::write_text;
+
+// 2 × 12 × 2 = 48 points, a mix of closed forms and simulations.
+const std::string kSpec = R"(study = "test"
+name = "grid"
+kind = "inchworm_vss"
+description = "runner test"
+[params]
+rtol = 1e-9
+[axes]
+mu = [1.0, 0.2]
+F_frac = { linspace = [0.02, 1.0], n = 12 }
+method = ["exact", "analytic"]
+)";
+
+PreparedSweep prepared(const std::string& text = kSpec) {
+  return prepare(parse_spec(text, "grid.toml"));
+}
+
+RunOptions options(const std::filesystem::path& data, unsigned jobs, bool timing = false) {
+  RunOptions o;
+  o.data_dir = data;
+  o.jobs = jobs;
+  o.timing = timing;
+  return o;
+}
+
+/// The CSV without its wall_s column.
+std::string without_wall(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::size_t column = 0;
+  for (std::size_t p = 0, k = 0;; ++k) {
+    const std::size_t e = line.find(',', p);
+    if (line.substr(p, e - p) == "wall_s") {
+      column = k;
+      break;
+    }
+    if (e == std::string::npos) {
+      return csv;
+    }
+    p = e + 1;
+  }
+  std::string out;
+  in.seekg(0);
+  while (std::getline(in, line)) {
+    std::size_t p = 0;
+    for (std::size_t k = 0; k < column; ++k) {
+      p = line.find(',', p) + 1;
+    }
+    const std::size_t e = line.find(',', p);
+    out += line.substr(0, p) + (e == std::string::npos ? "" : line.substr(e + 1)) + "\n";
+  }
+  return out;
+}
+
+TEST(Runner, SameBytesWithOneOrTwoThreads) {
+  const ScratchDir a;
+  const ScratchDir b;
+  const PreparedSweep sweep = prepared();
+  const RunSummary one = run(sweep, options(a.path(), 1));
+  const RunSummary two = run(sweep, options(b.path(), 2));
+  ASSERT_TRUE(one.complete);
+  ASSERT_TRUE(two.complete);
+  EXPECT_EQ(two.jobs, 2U);
+  EXPECT_EQ(one.points, 48);
+  const std::string csv = read_text(one.csv);
+  EXPECT_EQ(csv, read_text(two.csv));
+  // Rows sorted by id, one per point.
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("id,mu,mu_s,F,f_tilde,F_frac,method,", 0), 0U);
+  for (long long id = 0; std::getline(in, line); ++id) {
+    EXPECT_EQ(line.rfind(std::to_string(id) + ",", 0), 0U);
+  }
+  // With timing on, only wall_s differs.
+  const ScratchDir c;
+  const RunSummary timed = run(sweep, options(c.path(), 2, true));
+  EXPECT_EQ(without_wall(read_text(timed.csv)), without_wall(csv));
+  EXPECT_NE(without_wall(csv), csv);
+  // Nothing else left behind.
+  EXPECT_EQ(files_under(a.path()), (std::vector<std::string>{"test/grid.csv", "test/grid.json"}));
+}
+
+TEST(Runner, Sidecar) {
+  const ScratchDir d;
+  const RunSummary s = run(prepared(), options(d.path(), 2));
+  const auto j = nlohmann::json::parse(read_text(s.sidecar));
+  EXPECT_EQ(j.at("study"), "test");
+  EXPECT_EQ(j.at("name"), "grid");
+  EXPECT_EQ(j.at("kind"), "inchworm_vss");
+  EXPECT_EQ(j.at("point_count"), 48);
+  EXPECT_EQ(j.at("failed_point_count"), 0);
+  EXPECT_EQ(j.at("threads"), 2);
+  EXPECT_EQ(j.at("points").size(), 48U);
+  EXPECT_EQ(j.at("points")[47].at("method"), "analytic");
+  EXPECT_EQ(j.at("spec").at("axes").at("mu")[1], 0.2);
+  EXPECT_TRUE(j.at("provenance").contains("git_commit"));
+  for (const char* key : {"wall_s", "date", "columns", "description", "spec_file"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+}
+
+TEST(Runner, InterruptedThenResumedIsByteIdentical) {
+  const PreparedSweep sweep = prepared();
+  const ScratchDir full;
+  const std::string reference = read_text(run(sweep, options(full.path(), 2)).csv);
+
+  for (unsigned jobs : {1U, 2U}) {
+    const ScratchDir d;
+    RunOptions o = options(d.path(), jobs);
+    o.max_points = 17;
+    const RunSummary first = run(sweep, o);
+    EXPECT_FALSE(first.complete);
+    EXPECT_EQ(first.computed, 17);
+    EXPECT_FALSE(std::filesystem::exists(first.csv));
+    EXPECT_TRUE(std::filesystem::exists(first.partial));
+    // A second interruption, then the rest.
+    o.resume = true;
+    o.max_points = 9;
+    const RunSummary second = run(sweep, o);
+    EXPECT_EQ(second.resumed, 17);
+    EXPECT_EQ(second.computed, 9);
+    // A run killed while writing leaves a half line behind: it is ignored.
+    {
+      std::ofstream partial(second.partial, std::ios::app);
+      partial << "40,1,1,12.5,0.8";
+    }
+    o.max_points = -1;
+    const RunSummary last = run(sweep, o);
+    EXPECT_TRUE(last.complete);
+    EXPECT_EQ(last.resumed, 26);
+    EXPECT_EQ(last.computed, 22);
+    EXPECT_EQ(read_text(last.csv), reference);
+    EXPECT_FALSE(std::filesystem::exists(last.partial));
+    EXPECT_EQ(nlohmann::json::parse(read_text(last.sidecar)).at("resumed_point_count"), 26);
+  }
+}
+
+TEST(Runner, ResumeWithTimingDiffersOnlyInWallTime) {
+  const PreparedSweep sweep = prepared();
+  const ScratchDir full;
+  const std::string reference = read_text(run(sweep, options(full.path(), 2, true)).csv);
+  const ScratchDir d;
+  RunOptions o = options(d.path(), 2, true);
+  o.max_points = 20;
+  (void)run(sweep, o);
+  o.max_points = -1;
+  o.resume = true;
+  EXPECT_EQ(without_wall(read_text(run(sweep, o).csv)), without_wall(reference));
+}
+
+TEST(Runner, WithoutResumeACheckpointIsDiscarded) {
+  const PreparedSweep sweep = prepared();
+  const ScratchDir d;
+  RunOptions o = options(d.path(), 2);
+  o.max_points = 10;
+  (void)run(sweep, o);
+  o.max_points = -1;
+  const RunSummary s = run(sweep, o);
+  EXPECT_EQ(s.resumed, 0);
+  EXPECT_EQ(s.computed, 48);
+}
+
+TEST(Runner, ResumeRefusesAnotherSpecsCheckpoint) {
+  const ScratchDir d;
+  RunOptions o = options(d.path(), 2);
+  o.max_points = 10;
+  (void)run(prepared(), o);
+  o.resume = true;
+  o.max_points = -1;
+  // Same columns, other points.
+  std::string other = kSpec;
+  other.replace(other.find("n = 12"), 6, "n = 13");
+  EXPECT_THROW((void)run(prepared(other), o), core::InputError);
+  // Other columns.
+  const std::filesystem::path partial = partial_path(prepared().spec, d.path());
+  std::string text = read_text(partial);
+  text.replace(0, 2, "ID");
+  write_text(partial, text);
+  try {
+    (void)run(prepared(), o);
+    ADD_FAILURE() << "no error";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.where(), partial.string());
+    EXPECT_NE(std::string(e.what()).find("header"), std::string::npos);
+  }
+  EXPECT_FALSE(std::filesystem::exists(csv_path(prepared().spec, d.path())));
+}
+
+TEST(Runner, FailedPointsAreWrittenAndCounted) {
+  const ScratchDir d;
+  const PreparedSweep sweep = prepared(R"(study = "test"
+name = "fail"
+kind = "inchworm_vss"
+[params]
+F = 73.575
+mu = 0.05
+method = "analytic"
+[axes]
+max_strokes = [8, 100000]
+)");
+  const RunSummary s = run(sweep, options(d.path(), 2));
+  EXPECT_TRUE(s.complete);
+  EXPECT_EQ(s.failed, 1);
+  const std::string csv = read_text(s.csv);
+  EXPECT_NE(csv.find("no convergence within 8 strokes"), std::string::npos) << csv;
+  const auto j = nlohmann::json::parse(read_text(s.sidecar));
+  EXPECT_EQ(j.at("failed_point_count"), 1);
+  EXPECT_EQ(j.at("failed_points")[0].at("id"), 0);
+}
+
+TEST(Runner, ProgressLines) {
+  const ScratchDir d;
+  std::ostringstream progress;
+  RunOptions o = options(d.path(), 1);
+  o.progress = &progress;
+  o.progress_interval_s = 0.0;  // every point
+  (void)run(prepared(), o);
+  const std::string text = progress.str();
+  EXPECT_NE(text.find("[test/grid] 1/48 points, "), std::string::npos) << text;
+  EXPECT_NE(text.find("[test/grid] 48/48 points, "), std::string::npos) << text;
+  EXPECT_NE(text.find(", ETA "), std::string::npos) << text;
+  // At the default interval a fast sweep prints no progress line at all.
+  std::ostringstream quiet;
+  o.progress = &quiet;
+  o.progress_interval_s = 1.0;
+  (void)run(prepared(), o);
+  EXPECT_EQ(quiet.str().find("/48 points"), std::string::npos) << quiet.str();
+}
+
+/// The convergence point function follows the simulation's own arithmetic.
+TEST(Runner, ConvergenceRowsMatchTheSimulation) {
+  const PreparedSweep sweep = prepared(R"(study = "test"
+name = "conv"
+kind = "inchworm_convergence"
+[params]
+F = 73.575
+mu = 0.05
+cycles = 30
+)");
+  const PointResult r = sweep.function->run(sweep.points[0]);
+  ASSERT_FALSE(r.failed) << r.message;
+  ASSERT_EQ(r.rows.size(), 30U);
+  inchworm::Params p;
+  p.F = 73.575;
+  p.mu = 0.05;
+  events::ExactBackend backend;
+  inchworm::SimulationOptions so;
+  so.target = -1.0;  // never stop
+  so.max_strokes = 60;
+  const auto cycles = inchworm::steady_state_by_simulation(p, backend, so, true);
+  ASSERT_EQ(cycles.cycle_averages.size(), 30U);
+  for (std::size_t i = 0; i < 30; ++i) {
+    EXPECT_EQ(std::get<long long>(r.rows[i][4]), static_cast<long long>(i + 1));
+    EXPECT_EQ(std::get<double>(r.rows[i][5]), cycles.cycle_averages[i]);
+  }
+  events::ExactBackend backend2;
+  so.estimator = inchworm::Estimator::kRunningMean;
+  const auto running = inchworm::steady_state_by_simulation(p, backend2, so);
+  EXPECT_EQ(std::get<double>(r.rows.back()[6]), running.v_ss);
+}
+
+// --- the command line ---------------------------------------------------------------------------
+
+TEST(SweepCli, RunsResumesAndKeepsProgressOffStdout) {
+  const ScratchDir d;
+  const auto spec = d / "grid.toml";
+  write_text(spec, kSpec);
+  const auto data = (d / "data").string();
+  const auto r1 = run_slipwalk(
+      {"sweep", spec.string(), "--data", data, "--jobs", "2", "--no-timing", "--max-points", "11"});
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  EXPECT_EQ(files_under(d / "data"), std::vector<std::string>{"test/grid.partial.csv"});
+  const auto r2 = run_slipwalk({"sweep", spec.string(), "--data", data, "--no-timing", "--resume"});
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  EXPECT_NE(r2.out.find("11 resumed"), std::string::npos) << r2.out;
+  const std::string resumed = read_text(d / "data" / "test" / "grid.csv");
+  const auto r3 = run_slipwalk({"sweep", spec.string(), "--data", data, "--no-timing", "-j", "1"});
+  ASSERT_EQ(r3.exit_code, 0) << r3.err;
+  EXPECT_EQ(read_text(d / "data" / "test" / "grid.csv"), resumed);
+  EXPECT_EQ(files_under(d / "data"), (std::vector<std::string>{"test/grid.csv", "test/grid.json"}));
+
+  // A sweep that takes a few seconds (8 points of 200 slow solves, about 0.4 s each here):
+  // progress goes to stderr, never stdout.
+  const auto slow = d / "slow.toml";
+  write_text(slow, R"(study = "test"
+name = "slow"
+kind = "inchworm_vss"
+[params]
+F = 735.75
+mu = 0.05
+method = "analytic"
+repeats = 200
+[axes]
+rtol = [1e-10, 1e-10, 1e-10, 1e-10, 1e-10, 1e-10, 1e-10, 1e-10]
+)");
+  const auto r4 = run_slipwalk({"sweep", slow.string(), "--data", data, "--jobs", "1"});
+  ASSERT_EQ(r4.exit_code, 0) << r4.err;
+  EXPECT_EQ(r4.out.find("ETA"), std::string::npos) << r4.out;
+  EXPECT_NE(r4.err.find("[test/slow] "), std::string::npos) << r4.err;
+  EXPECT_NE(r4.err.find(" points, "), std::string::npos) << r4.err;
+  EXPECT_NE(r4.err.find("ETA"), std::string::npos) << r4.err;
+}
+
+TEST(SweepCli, BadSpecsWriteNothing) {
+  const ScratchDir d;
+  const auto data = d / "data";
+  struct Case {
+    std::string text, where;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"study = \"t\"\nname = \"x\"\nkind = \"inchworm_vss\"\n[axes\n", "bad.toml:4:"},
+           {"study = \"t\"\nname = \"x\"\nkind = \"nope\"\n", "bad.toml:3:8"},
+           {kSpec + "bogus = 1\n", "bad.toml:"},
+           // one bad value among many points
+           {"study = \"t\"\nname = \"x\"\nkind = \"inchworm_vss\"\n[axes]\n"
+            "F = [45.0, 50.0, 60.0, 9.0, 70.0]\nmu = [1.0]\n",
+            "bad.toml:5:"},
+       }) {
+    const auto spec = d / "bad.toml";
+    write_text(spec, c.text);
+    const auto r = run_slipwalk({"sweep", spec.string(), "--data", data.string()});
+    EXPECT_EQ(r.exit_code, 2) << c.text << r.err;
+    EXPECT_EQ(r.err.rfind("slipwalk: error: " + d.path().string() + "/" + c.where, 0), 0U) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(data)) << c.text;
+  }
+  const auto missing = run_slipwalk({"sweep", (d / "none.toml").string()});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(run_slipwalk({"sweep"}).exit_code, 2);
+  write_text(d / "ok.toml", kSpec);
+  EXPECT_EQ(run_slipwalk({"sweep", (d / "ok.toml").string(), "--jobs", "-1"}).exit_code, 2);
+  EXPECT_EQ(run_slipwalk({"sweep", (d / "ok.toml").string(), "--jobs", "x"}).exit_code, 2);
+}
+
+TEST(SweepCli, ReproduceRunsAStudy) {
+  const ScratchDir d;
+  const auto study = d / "studies" / "demo";
+  std::filesystem::create_directories(study);
+  write_text(study / "study.toml", R"(title = "demo"
+sweeps = ["grid.toml"]
+[[trace]]
+name = "trace"
+F = 45.0
+mu = 1.0
+cycles = 2
+dt = 0.01
+)");
+  std::string spec = kSpec;
+  spec.replace(spec.find("\"test\""), 6, "\"demo\"");
+  write_text(study / "grid.toml", spec);
+  const auto data = d / "data";
+  const std::vector<std::string> base = {"reproduce", "--studies",   (d / "studies").string(),
+                                         "--data",    data.string(), "--no-report"};
+  auto args = base;
+  args.push_back("demo");
+  const auto r = run_slipwalk(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(files_under(data), (std::vector<std::string>{"demo/grid.csv", "demo/grid.json",
+                                                         "demo/trace.csv", "demo/trace.json"}));
+  // An unknown study, a bad study file: exit 2 and nothing new written.
+  args = base;
+  args.push_back("nope");
+  EXPECT_EQ(run_slipwalk(args).exit_code, 2);
+  std::filesystem::remove_all(data);
+  write_text(study / "study.toml", "title = \"demo\"\nsweeps = [\"missing.toml\"]\n");
+  const auto bad = run_slipwalk(base);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("study.toml:2:"), std::string::npos) << bad.err;
+  write_text(study / "study.toml",
+             "title = \"demo\"\n[[trace]]\nname = \"t\"\nF = 5.0\nmu = 1.0\n");
+  const auto bad_trace = run_slipwalk(base);
+  EXPECT_EQ(bad_trace.exit_code, 2);
+  EXPECT_NE(bad_trace.err.find("study.toml:4:"), std::string::npos) << bad_trace.err;
+  EXPECT_FALSE(std::filesystem::exists(data));
+}
+
+}  // namespace
+}  // namespace slipwalk::sweeps

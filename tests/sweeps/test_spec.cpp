@@ -1,0 +1,344 @@
+// Sweep specs: axis expansion, product order and ids, [[points]] and [[block]], quick overrides,
+// and bad specs rejected with file:line:col before anything runs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "sweeps/runner.hpp"
+#include "sweeps/spec.hpp"
+
+namespace slipwalk::sweeps {
+namespace {
+
+const std::string kHead = R"(study = "test"
+name = "t"
+kind = "inchworm_vss"
+)";
+
+Spec parse(const std::string& body, bool quick = false) {
+  return parse_spec(kHead + body, "spec.toml", quick);
+}
+
+/// The InputError's location ("" if none was thrown).
+std::string where_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const core::InputError& e) {
+    return e.where();
+  }
+  return "";
+}
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+double num(const Point& p, const char* key) { return p.find(key)->number(); }
+std::string text(const Point& p, const char* key) { return p.find(key)->text(); }
+
+TEST(Spec, LinspaceAndLogspaceEndpointsExact) {
+  const auto lin = linspace(0.005, 1.0, 80);
+  ASSERT_EQ(lin.size(), 80U);
+  EXPECT_EQ(lin.front(), 0.005);
+  EXPECT_EQ(lin.back(), 1.0);
+  EXPECT_NEAR(lin[1] - lin[0], (1.0 - 0.005) / 79, 1e-16);
+  const auto geo = logspace(1e-6, 1e-12, 7);
+  ASSERT_EQ(geo.size(), 7U);
+  EXPECT_EQ(geo.front(), 1e-6);
+  EXPECT_EQ(geo.back(), 1e-12);
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_NEAR(geo[i] / std::pow(10.0, -6 - i), 1.0, 1e-14);
+  }
+  EXPECT_EQ(linspace(2.0, 3.0, 1), std::vector<double>{2.0});
+}
+
+TEST(Spec, AxesFromTheFile) {
+  const Spec s = parse(R"(
+[axes]
+mu = [1.0, 0.2]
+F_frac = { linspace = [0.005, 1.0], n = 80 }
+F_max = { logspace = [10.0, 1000.0], n = 3 }
+method = ["exact", "analytic"]
+)");
+  const auto points = expand(s);
+  ASSERT_EQ(points.size(), 2U * 80U * 3U * 2U);
+  EXPECT_EQ(num(points.front(), "F_frac"), 0.005);
+  EXPECT_EQ(num(points.back(), "F_frac"), 1.0);
+  EXPECT_EQ(num(points.back(), "F_max"), 1000.0);
+  EXPECT_NEAR(num(points[2], "F_max"), 100.0, 1e-12);
+}
+
+TEST(Spec, ProductOrderFollowsTheFileFirstAxisSlowest) {
+  // "z" is written before "a": the written order counts, not the alphabetical one.
+  const Spec s = parse(R"(
+[params]
+rtol = 1e-8
+[axes]
+z = [1, 2]
+a = ["x", "y", "w"]
+)");
+  const auto points = expand(s);
+  ASSERT_EQ(points.size(), 6U);
+  const std::vector<std::pair<double, std::string>> expected = {{1, "x"}, {1, "y"}, {1, "w"},
+                                                                {2, "x"}, {2, "y"}, {2, "w"}};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(points[i].id, static_cast<long long>(i));
+    EXPECT_EQ(num(points[i], "z"), expected[i].first);
+    EXPECT_EQ(text(points[i], "a"), expected[i].second);
+    EXPECT_EQ(num(points[i], "rtol"), 1e-8);
+  }
+  EXPECT_TRUE(points[0].find("z")->integer);
+}
+
+TEST(Spec, PointsTimesAxesAndParamsAsDefaults) {
+  const Spec s = parse(R"(
+[params]
+mu = 0.5
+rtol = 1e-9
+[[points]]
+F = 45.0
+mu = 1.0
+[[points]]
+F = 73.575
+[axes]
+rtol = [1e-6, 1e-8]
+)");
+  const auto points = expand(s);
+  ASSERT_EQ(points.size(), 4U);
+  EXPECT_EQ(num(points[0], "F"), 45.0);
+  EXPECT_EQ(num(points[0], "mu"), 1.0);     // the point overrides the param
+  EXPECT_EQ(num(points[0], "rtol"), 1e-6);  // the axis overrides the param
+  EXPECT_EQ(num(points[1], "rtol"), 1e-8);
+  EXPECT_EQ(num(points[2], "F"), 73.575);
+  EXPECT_EQ(num(points[2], "mu"), 0.5);  // the param where the point says nothing
+  EXPECT_EQ(points[3].id, 3);
+}
+
+TEST(Spec, BlocksAreConcatenatedWithContinuingIds) {
+  const Spec s = parse(R"(
+[params]
+F = 45.0
+mu = 1.0
+[[block]]
+params = { method = "analytic" }
+axes.rtol = [1e-6, 1e-8, 1e-10]
+[[block]]
+axes.method = ["exact", "rootfind"]
+[[block.points]]
+mu = 0.2
+)");
+  const auto points = expand(s);
+  ASSERT_EQ(points.size(), 5U);
+  EXPECT_EQ(text(points[0], "method"), "analytic");
+  EXPECT_EQ(num(points[2], "rtol"), 1e-10);
+  EXPECT_EQ(text(points[3], "method"), "exact");
+  EXPECT_EQ(num(points[3], "mu"), 0.2);
+  EXPECT_EQ(points[3].find("rtol"), nullptr);
+  EXPECT_EQ(points[4].id, 4);
+}
+
+TEST(Spec, ParamsOnlyIsOnePoint) {
+  const auto points = expand(parse("[params]\nF = 45.0\nmu = 1.0\n"));
+  ASSERT_EQ(points.size(), 1U);
+  EXPECT_EQ(points[0].id, 0);
+}
+
+TEST(Spec, QuickOverrides) {
+  const std::string body = R"(
+[params]
+rtol = 1e-10
+[axes]
+mu = [1.0, 0.2]
+F_frac = { linspace = [0.005, 1.0], n = 80 }
+[quick]
+axes.F_frac = { linspace = [0.05, 1.0], n = 5 }
+params.rtol = 1e-6
+)";
+  const auto full = expand(parse(body, false));
+  const auto quick = expand(parse(body, true));
+  ASSERT_EQ(full.size(), 160U);
+  ASSERT_EQ(quick.size(), 10U);
+  EXPECT_EQ(num(quick[0], "F_frac"), 0.05);
+  EXPECT_EQ(num(quick[4], "F_frac"), 1.0);
+  EXPECT_EQ(num(quick[5], "mu"), 0.2);  // the axis keeps its place
+  EXPECT_EQ(num(quick[0], "rtol"), 1e-6);
+  EXPECT_EQ(num(full[0], "rtol"), 1e-10);
+  EXPECT_TRUE(parse(body, true).quick);
+}
+
+TEST(Spec, QuickPointsReplaceThePoints) {
+  const auto quick = expand(parse(R"(
+[[points]]
+F = 45.0
+[[points]]
+F = 50.0
+[[points]]
+F = 60.0
+[quick]
+points = [{ F = 45.0 }]
+)",
+                                  true));
+  ASSERT_EQ(quick.size(), 1U);
+}
+
+TEST(Spec, MalformedTomlNamesFileLineColumn) {
+  const std::string where = where_of([] {
+    (void)parse_spec("study = \"a\"\nname = \"b\"\nkind = \"inchworm_vss\"\n[axes]\nmu = [1.0,\n",
+                     "bad.toml");
+  });
+  EXPECT_EQ(where.rfind("bad.toml:", 0), 0U) << where;
+  // line:col after the file name
+  ASSERT_NE(where.find(':', 9), std::string::npos) << where;
+  EXPECT_GE(std::stoi(where.substr(9)), 5) << where;
+  EXPECT_EQ(where_of([] { (void)parse_spec("x = = 1\n", "bad.toml"); }), "bad.toml:1:5");
+}
+
+TEST(Spec, BadSpecsAreInputErrors) {
+  // Unknown top-level key, with its position.
+  EXPECT_EQ(where_of([] { (void)parse("\n\nbogus = 1\n"); }), "spec.toml:6:1");
+  // Missing required keys.
+  EXPECT_NE(
+      message_of([] { (void)parse_spec("study = \"a\"\nname = \"b\"\n", "s.toml"); }).find("kind"),
+      std::string::npos);
+  // A study or name that is no plain file name.
+  EXPECT_NE(where_of([] {
+              (void)parse_spec("study = \"../x\"\nname = \"b\"\nkind = \"k\"\n", "s.toml");
+            }),
+            "");
+  for (const char* body : {
+           "[axes]\nmu = []\n",                                       // empty list
+           "[axes]\nmu = [1.0, \"a\"]\n",                             // mixed
+           "[axes]\nmu = { linspace = [0.1, 1.0], n = 0 }\n",         // n < 1
+           "[axes]\nmu = { linspace = [0.1, 1.0], n = 2.5 }\n",       // n not an integer
+           "[axes]\nmu = { linspace = [0.1], n = 3 }\n",              // one end
+           "[axes]\nmu = { logspace = [-1.0, 1.0], n = 3 }\n",        // geometric through 0
+           "[axes]\nmu = { linspace = [0.1, 1.0], n = 3, k = 1 }\n",  // unknown key
+           "[axes]\nmu = 1.0\n",                                      // not a list
+           "[axes]\nmu = [true]\n",                                   // not a number or string
+           "[axes]\nmu = [nan]\n",                                    // not finite
+           "[params]\nmu = [1.0]\n",                                  // a param is one value
+           "[[points]]\nmu = 1.0\n[axes]\nmu = [1.0]\n",              // both point and axis
+           "[quick]\naxes.nope = [1.0]\n",                            // quick names no axis
+           "[axes]\nmu = [1.0]\n[quick]\nparams.mu = 1.0\n",          // quick param over an axis
+           "[quick]\nbogus = 1\n",                                    // unknown quick key
+           "[[block]]\nbogus = 1\n",                                  // unknown block key
+           "[axes]\na = { linspace = [0, 1], n = 10000 }\nb = { linspace = [0, 1], n = 10000 }\n",
+       }) {
+    const std::string where = where_of([&] { (void)parse(body); });
+    EXPECT_EQ(where.rfind("spec.toml", 0), 0U) << body << " -> '" << where << "'";
+  }
+}
+
+TEST(Spec, UnknownKindAndUnknownKeyBeforeAnyPointRuns) {
+  const std::string kind = where_of([] {
+    (void)prepare(parse_spec("study = \"a\"\nname = \"b\"\nkind = \"nope\"\n", "s.toml"));
+  });
+  EXPECT_EQ(kind, "s.toml:3:8");
+  const std::string message =
+      message_of([] { (void)prepare(parse("[params]\nmu = 1.0\nForce = 45.0\n")); });
+  EXPECT_NE(message.find("spec.toml:6:9"), std::string::npos) << message;
+  EXPECT_NE(message.find("Force"), std::string::npos) << message;
+}
+
+TEST(Spec, ValueOutOfRangeAtOnePointIsReportedWithKeyAndPoint) {
+  struct Case {
+    std::string body, key, where;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"[params]\nF = 45.0\n[axes]\nmu = [1.0, 0.5, -0.2]\n", "mu", "spec.toml:7:17"},
+           {"[params]\nmu = 1.0\n[axes]\nF_frac = [0.5, 1.5]\n", "F_frac", "spec.toml:7:16"},
+           {"[params]\nmu = 1.0\n[axes]\nF = [45.0, 9.81]\n", "F", "spec.toml:7:12"},
+           {"[params]\nmu = 1.0\nF = 45.0\nF_frac = 0.5\n", "", "spec.toml"},
+           {"[params]\nmu = 1.0\nF = 45.0\nmethod = \"euler\"\n", "method", "spec.toml:7:10"},
+           {"[params]\nmu = 1.0\nF = 45.0\nrtol = 0\n", "rtol", "spec.toml:7:8"},
+           {"[params]\nmu = 1.0\nF = 45.0\nstop = \"never\"\n", "stop", "spec.toml:7:8"},
+           {"[params]\nmu = 1.0\nF = 45.0\nmax_strokes = 10.5\n", "max_strokes", ""},
+           {"[params]\nmu = 1.0\nF = 45.0\nmu_s = 0.5\n", "mu_s", "spec.toml:7:8"},
+           {"[params]\nmu = \"one\"\nF = 45.0\n", "mu", "spec.toml:5:6"},
+           {"[params]\nmu = 1.0\nF_frac = 0.5\nF_lo = \"nope\"\n", "F_lo", ""},
+           {"[params]\nmu = 1.0\nF = 45.0\nF_lo = \"muMg\"\n", "F_lo", ""},
+       }) {
+    const std::string message = message_of([&] { (void)prepare(parse(c.body)); });
+    EXPECT_EQ(message.rfind(c.where, 0), 0U) << c.body << " -> " << message;
+    EXPECT_NE(message.find(c.key), std::string::npos) << c.body << " -> " << message;
+    EXPECT_NE(message.find("point"), std::string::npos) << c.body << " -> " << message;
+  }
+}
+
+TEST(Spec, ConvergenceKindNeedsCyclesAndTheExactBackend) {
+  const std::string head = "study = \"a\"\nname = \"b\"\nkind = \"inchworm_convergence\"\n";
+  EXPECT_NO_THROW(
+      (void)prepare(parse_spec(head + "[params]\nF = 45.0\nmu = 1.0\ncycles = 10\n", "s")));
+  EXPECT_NE(where_of([&] { (void)prepare(parse_spec(head + "[params]\nF = 45.0\n", "s")); }), "");
+  EXPECT_NE(where_of([&] {
+              (void)prepare(
+                  parse_spec(head + "[params]\nF = 45.0\ncycles = 10\nmethod = \"cvode\"\n", "s"));
+            }),
+            "");
+  EXPECT_NE(
+      where_of([&] {
+        (void)prepare(parse_spec(head + "[params]\nF = 45.0\ncycles = 10\nrtol = 1e-6\n", "s"));
+      }),
+      "");
+}
+
+TEST(Spec, ForceRanges) {
+  // F_frac over [F_lo, F_max]: from mu_s m g by default, from mu_s M g with F_lo = "muMg".
+  const auto p = prepare(parse(R"(
+[params]
+method = "exact"
+F_lo = "muMg"
+F_lo_factor = 1.0001
+[axes]
+mu = [0.05, 1.0]
+F_frac = [0.0, 1.0]
+)"));
+  ASSERT_EQ(p.points.size(), 4U);
+  const PointResult first = p.function->run(p.points[0]);
+  const PointResult last = p.function->run(p.points[3]);
+  const auto cell = [](const PointResult& r, int i) { return std::get<double>(r.rows[0][i]); };
+  EXPECT_NEAR(cell(first, 3), 1.0001 * 0.05 * 1.5 * 9.81, 1e-13);  // F
+  EXPECT_NEAR(cell(first, 4), 1.0001, 1e-13);                      // f_tilde
+  EXPECT_EQ(std::get<long long>(first.rows[0][13]), 2);            // regime II
+  EXPECT_NEAR(cell(last, 3), 5 * 1.5 * 9.81, 1e-12);
+  EXPECT_NEAR(cell(last, 4), 5.0, 1e-13);
+}
+
+/// Every study spec in the repository loads and checks, full and quick.
+TEST(Spec, StudySpecsLoad) {
+  const std::filesystem::path dir = std::filesystem::path(SLIPWALK_SOURCE_DIR) / "studies";
+  int specs = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    if (entry.path().extension() != ".toml" || entry.path().filename() == "study.toml") {
+      continue;
+    }
+    ++specs;
+    for (bool quick : {false, true}) {
+      const PreparedSweep p = prepare(load_spec(entry.path(), quick));
+      EXPECT_GT(p.points.size(), 0U) << entry.path();
+      if (quick) {
+        EXPECT_LE(p.points.size(), 200U) << entry.path();
+      }
+    }
+  }
+  EXPECT_GE(specs, 7);
+  const auto count = [&](const char* name) {
+    return point_count(load_spec(dir / "ch2_inchworm" / name));
+  };
+  EXPECT_EQ(count("fig2_3.toml"), 2U * 80U * 2U);
+  EXPECT_EQ(count("regression.toml"), 20U * 40U);
+  EXPECT_EQ(count("eq2_6_map.toml"), 40U * 60U);
+  EXPECT_EQ(count("hard_cases.toml"), 6U * 6U);
+  EXPECT_EQ(count("cost.toml"), 2U * 4U * 7U + 2U * 2U);
+  EXPECT_EQ(count("convergence.toml"), 2U);
+}
+
+}  // namespace
+}  // namespace slipwalk::sweeps
