@@ -20,6 +20,7 @@ struct SweepCommand {
   bool no_timing = false;
   std::string data = std::string(SLIPWALK_SOURCE_DIR) + "/data";
   long long max_points = -1;
+  double progress_interval_s = 1.0;
 
   void run() const {
     if (jobs < 0 || jobs > 4096) {
@@ -38,6 +39,7 @@ struct SweepCommand {
     options.timing = !no_timing;
     options.max_points = max_points;
     options.progress = &std::cerr;
+    options.progress_interval_s = progress_interval_s;
     const sweeps::RunSummary s = sweeps::run(sweep, options);
     if (s.complete) {
       std::cout << s.csv.string() << ": " << s.points << " points (" << s.failed << " failed, "
@@ -65,6 +67,10 @@ void add_sweep_command(CLI::App& app) {
                 "write wall_s as 0, so that reruns give byte-identical files");
   sub->add_option("--max-points", cmd->max_points,
                   "stop after computing this many points (tests of --resume)")
+      ->group("");  // hidden
+  sub->add_option("--progress-interval", cmd->progress_interval_s,
+                  "seconds between progress lines (tests use 0: every point)")
+      ->check(CLI::NonNegativeNumber)
       ->group("");  // hidden
   sub->callback([cmd] { cmd->run(); });
 }
