@@ -121,6 +121,28 @@ TEST(ClosedForm, HardCasesStayFiniteAndAgree) {
   EXPECT_GT(s.period, 1e3);
 }
 
+// Every acceleration of the model is μg times a function of F/(μg) (a_x = μg(f − m)/m, b =
+// μg(f + M)/M, r1 = μg f(1/m + 1/M), a2 = μgρ or μg(f − m)/(m + M), κ = f/(f + M) with
+// f = F/(μg)), so c0 ∝ √μ and T ∝ 1/√μ at fixed F/μ: v_ss(F, μ) = √μ · v_ss(F/μ, 1). An exact
+// oracle that the closed form, the fixed point and the simulation must all obey.
+TEST(ScalingLaw, SpeedScalesWithRootMuAtFixedForcePerMu) {
+  for (const Params& p : testing::thesis_grid()) {
+    Params unit = p;
+    unit.mu = 1.0;
+    unit.F = p.F / p.mu;
+    const SteadyState s = steady_state_closed_form(p);
+    const SteadyState u = steady_state_closed_form(unit);
+    // Rounding F/μ is amplified by the condition number of F − μmg near the threshold.
+    const double tol = 16.0 * 2.2e-16 * p.F / (p.F - p.mu * p.m * p.g);
+    EXPECT_LT(rel_diff(s.v_ss, std::sqrt(p.mu) * u.v_ss), tol) << "F=" << p.F;
+    EXPECT_LT(rel_diff(s.period, u.period / std::sqrt(p.mu)), tol);
+    EXPECT_NEAR(s.contraction, u.contraction, 1e-14);  // the contraction depends on F/μ alone
+    events::ExactBackend backend;
+    const SimulationSummary sim = steady_state_by_simulation(unit, backend);
+    EXPECT_LT(rel_diff(std::sqrt(p.mu) * sim.v_ss, s.v_ss), 1e-10);
+  }
+}
+
 TEST(GoverningLaw, Eq26IsTheThesisFormula) {
   // ṽ = 0.073μ(1 − 0.178μ²) f̃ + 0.11μ + 0.20 (eq. 2.6), evaluated by hand at μ = 1, f̃ = 5.
   EXPECT_DOUBLE_EQ(governing_law_eq_2_6(1.0, 5.0), 0.073 * 0.822 * 5.0 + 0.31);
