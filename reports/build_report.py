@@ -28,7 +28,8 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import common as c  # noqa: E402
 
-SCRIPTS = ["fig2_2", "fig2_3", "regression", "eq2_6", "separation", "performance", "stability"]
+SCRIPTS = ["fig2_2", "fig2_3", "regression", "eq2_6", "scaling", "separation", "performance",
+           "stability"]
 VERDICT_CLASS = {
     "reproduced": "ok",
     "differs — explained": "explained",
@@ -341,7 +342,7 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
             f"<div class='fig{wide}' id='fig-{html.escape(script)}'>"
             f"<img src='{html.escape(script)}.png' alt='{html.escape(fg.get('title', script))}'>"
             f"<div class='text'><h3>{html.escape(fg.get('title', script))}</h3>"
-            f"<p><b>Thesis ({html.escape(fg.get('thesis', ''))}):</b> {html.escape(fg.get('shows', ''))}</p>"
+            f"<p><b>Thesis ({html.escape(fg.get('thesis', ''))}):</b> {html.escape(render(fg.get('shows', ''), values))}</p>"
             f"<blockquote>{html.escape(fg.get('quote', ''))}</blockquote>"
             f"<p><b>Ours:</b> the figure, from <code>reports/{html.escape(script)}.py</code>; "
             f"numbers in <code>values/{html.escape(script)}.json</code>.</p>{mini}{table}</div></div>")
