@@ -4,7 +4,10 @@
 #include <chrono>
 #include <utility>
 
+#include "events/cvode_backend.hpp"
 #include "events/exact_backend.hpp"
+#include "events/gsl_backend.hpp"
+#include "events/odeint_backend.hpp"
 #include "inchworm/closed_form.hpp"
 
 namespace slipwalk::inchworm {
@@ -97,6 +100,15 @@ VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
         r = simulate<events::ExactBackend>(p, method, opt);
         break;
       // numeric backends:
+      case Method::kCvode:
+        r = simulate<events::CvodeBackend>(p, method, opt);
+        break;
+      case Method::kOdeint:
+        r = simulate<events::OdeintBackend>(p, method, opt);
+        break;
+      case Method::kGsl:
+        r = simulate<events::GslBackend>(p, method, opt);
+        break;
       default:
         r.method = method;
         r.converged = false;

@@ -1,0 +1,263 @@
+#pragma once
+// SUNDIALS CVODE (6.4) as a backend of the hybrid layer (DESIGN.md: one hybrid description, many
+// integrators). It integrates a mode's flow as the ODE [p; v]' = [v; a] with CVODE's own
+// rootfinding on the mode's guards and has exactly the interface of ExactBackend.
+//
+// Numerical choices.
+//  - Method: Adams–Moulton (CV_ADAMS, orders 1–12) with CVODE's fixed-point (functional)
+//    corrector. The mechanical flows of this layer are not stiff (friction is a mode, not a
+//    stiff force), so BDF would buy stability nobody needs and cost a Jacobian and a dense linear
+//    solve per Newton iteration; high-order Adams takes the longest steps per field evaluation
+//    on a smooth non-stiff field, and with a fixed-point corrector no linear solver is attached.
+//  - Restarts: CVodeReInit at every segment start (a mode change is a discontinuity of the
+//    field; the multistep history must not cross it), CVodeSetStopTime(t_end), and one CVode
+//    call per accepted step (CV_ONE_STEP) so that the observer sees every step.
+//  - Guards: CVodeRootInit with one root function per guard slot of ModeFlow (slots past
+//    n_guards read a constant −1) and CVodeSetRootDirection(+1), so CVODE stops a step at the
+//    first rising crossing it brackets (Illinois method on its interpolant, to
+//    ~100·u·(|t| + |h|)). After every return the backend applies the step-end test shared by
+//    all numeric backends on CVODE's interpolant (CVodeGetDky: the state, and its derivative
+//    for dg/dt): it shrinks the crossing's bracket with TOMS 748 to BackendOptions::event_tol
+//    (default 4ε·max(1, |t|)), and it also catches what no sign test sees — a guard that rises
+//    through zero and falls back within one step, or one that starts ≥ 0, dips below zero and
+//    rises again within one step — from the sign of dg/dt at the step ends (dg/dt is assumed
+//    to change sign at most once per step). The event state is the interpolant at the upper end
+//    of the final bracket, where the guard is ≥ 0. Ties between guards go to the last one, as in
+//    ExactBackend.
+//  - The start of a segment mirrors first_rising_root at τ = 0: a guard that is ≥ 0 and rising
+//    (dg/dt > 0, from one evaluation of the field) fires at t0 without a step; any other guard
+//    ≥ 0 at t0 does not fire there. (CVODE ignores a root function that is exactly 0 at t0; a
+//    root function it leaves disarmed across segments is covered by the step-end test.)
+//
+// Memory. One SUNContext per backend, created in the constructor. The CVODE memory, its vectors
+// and its fixed-point solver are created on the first advance() for a state of dimension 2N
+// with G guard slots and reused by every later segment of that shape (CVodeReInit allocates
+// nothing); a call with another N or G rebuilds them once. Nothing is allocated per step or per
+// segment. SUNDIALS types stay out of this header: the C callbacks reach the templated field
+// and guards through the function pointers below.
+#include <algorithm>
+#include <array>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "events/hybrid_system.hpp"
+
+namespace slipwalk::events {
+
+class CvodeBackend {
+ public:
+  static constexpr const char* kName = "cvode";
+
+  explicit CvodeBackend(const BackendOptions& options = {});
+  ~CvodeBackend();
+  CvodeBackend(const CvodeBackend&) = delete;
+  CvodeBackend& operator=(const CvodeBackend&) = delete;
+  CvodeBackend(CvodeBackend&&) = delete;
+  CvodeBackend& operator=(CvodeBackend&&) = delete;
+
+  /// Advances x from t0 in the mode `flow` until its first guard rises through zero or t_end.
+  /// Throws core::ComputationError when CVODE fails.
+  template <int N, int G, class Observer = NoStepObserver>
+  SegmentEnd advance(const ModeFlow<N, G>& flow, double t0, State<N>& x, double t_end,
+                     Observer&& observe = {}) {
+    ++stats_.segments;
+    // g and dg/dt of every guard at t0; first_rising_root at τ = 0.
+    std::array<GuardSample, G> lo{};
+    {
+      State<N> dx;
+      flow_rhs<N, G>(&flow, x.data(), dx.data());
+      ++stats_.rhs_evals;
+      int fired = -1;
+      for (int k = 0; k < flow.n_guards; ++k) {
+        lo[k] = sample(flow.guard[k], x, dx);
+        if (lo[k].g >= 0.0 && lo[k].dg > 0.0) {
+          fired = k;
+        }
+      }
+      if (fired >= 0) {
+        return {t0, fired};
+      }
+    }
+    if (!(t_end > t0)) {
+      return {t0, -1};
+    }
+    flow_ = &flow;
+    rhs_ = &flow_rhs<N, G>;
+    guards_ = &flow_guards<N, G>;
+    start_segment(2 * N, G, t0, x.data(), t_end);
+    double t_lo = t0;
+    while (true) {
+      double t_hi = t_lo;
+      const bool at_end = step(t_end, t_hi);
+      const State<N> y_hi = Eigen::Map<const State<N>>(returned_state());
+      const State<N> dy_hi = Eigen::Map<const State<N>>(interpolate(t_hi, 1));
+      // The step-end test on [t_lo, t_hi], CVODE's interpolant giving g and dg/dt inside.
+      double t_event = std::numeric_limits<double>::infinity();
+      int event = -1;
+      const double tol = event_tolerance(t_hi);
+      for (int k = 0; k < flow.n_guards; ++k) {
+        const AffineGuard<N>& guard = flow.guard[k];
+        const GuardSample hi = sample(guard, y_hi, dy_hi);
+        const double t_k = first_rise([&](double t) { return value(guard, interpolate(t, 0)); },
+                                      [&](double t) { return rate(guard, interpolate(t, 1)); },
+                                      t_lo, t_hi, lo[k], hi, tol);
+        if (std::isfinite(t_k) && t_k <= t_event) {
+          t_event = t_k;
+          event = k;
+        }
+        lo[k] = hi;
+      }
+      if (event >= 0) {
+        x = t_event < t_hi ? State<N>(Eigen::Map<const State<N>>(interpolate(t_event, 0))) : y_hi;
+        finish_segment();
+        observe(t_event, x);
+        return {t_event, event};
+      }
+      x = y_hi;
+      observe(t_hi, x);
+      if (at_end) {
+        finish_segment();
+        return {t_end, -1};
+      }
+      t_lo = t_hi;
+    }
+  }
+
+  [[nodiscard]] const BackendStats& stats() const { return stats_; }
+
+ private:
+  using RhsFn = void (*)(const void* flow, const double* y, double* dydt);
+  using GuardFn = void (*)(const void* flow, const double* y, double* g);
+
+  /// A guard's value and rate of change at one time.
+  struct GuardSample {
+    double g = -1.0;
+    double dg = 0.0;
+  };
+
+  /// The mode's vector field [p; v]' = [v; a]: all a backend knows of the flow.
+  template <int N, int G>
+  static void flow_rhs(const void* flow, const double* y, double* dydt) {
+    const auto& f = *static_cast<const ModeFlow<N, G>*>(flow);
+    for (int i = 0; i < N; ++i) {
+      dydt[i] = y[N + i];
+      dydt[N + i] = f.accel(i);
+    }
+  }
+
+  /// CVODE's root functions: all G guard slots; unused slots read −1 (never a rising crossing).
+  template <int N, int G>
+  static void flow_guards(const void* flow, const double* y, double* g) {
+    const auto& f = *static_cast<const ModeFlow<N, G>*>(flow);
+    const State<N> x = Eigen::Map<const State<N>>(y);
+    for (int k = 0; k < G; ++k) {
+      g[k] = k < f.n_guards ? guard_value(f.guard[k], x) : -1.0;
+    }
+  }
+
+  template <int N>
+  GuardSample sample(const AffineGuard<N>& g, const State<N>& y, const State<N>& dy) {
+    ++stats_.guard_evals;
+    return {guard_value(g, y), g.wp.dot(dy.template head<N>()) + g.wv.dot(dy.template tail<N>())};
+  }
+  template <int N>
+  double value(const AffineGuard<N>& g, const double* y) {
+    ++stats_.guard_evals;
+    return guard_value(g, State<N>(Eigen::Map<const State<N>>(y)));
+  }
+  template <int N>
+  static double rate(const AffineGuard<N>& g, const double* dy) {
+    const State<N> d = Eigen::Map<const State<N>>(dy);
+    return g.wp.dot(d.template head<N>()) + g.wv.dot(d.template tail<N>());
+  }
+
+  [[nodiscard]] double event_tolerance(double t) const {
+    return options_.event_tol > 0.0 ? options_.event_tol
+                                    : 4.0 * DBL_EPSILON * std::max(1.0, std::abs(t));
+  }
+
+  /// Shrinks [a, b] with f(a) < 0 ≤ f(b) to width ≤ tol (TOMS 748, then bisection if it runs
+  /// out of iterations); returns the upper end, where f ≥ 0.
+  template <class F>
+  static double shrink(F&& f, double a, double b, double fa, double fb, double tol) {
+    std::uintmax_t iterations = 100;
+    auto [lo, hi] = boost::math::tools::toms748_solve(
+        f, a, b, fa, fb, [tol](double u, double v) { return std::abs(v - u) <= tol; }, iterations);
+    while (hi - lo > tol) {
+      const double mid = lo + 0.5 * (hi - lo);
+      if (mid <= lo || mid >= hi) {
+        break;
+      }
+      (f(mid) < 0.0 ? lo : hi) = mid;
+    }
+    return hi;
+  }
+
+  /// The step-end test: the first time in (t_lo, t_hi] at which a guard rises through zero, or
+  /// +inf, from g and dg/dt at the step ends (lo, hi) and evaluators g_at, dg_at inside the
+  /// step. Besides a plain sign change it finds a rise hidden inside the step: a maximum
+  /// (dg/dt from + to −) that reaches zero, or a minimum (dg/dt from − to +) below zero
+  /// followed by a rise; dg/dt is assumed to change sign at most once per step.
+  template <class GAt, class DgAt>
+  static double first_rise(GAt&& g_at, DgAt&& dg_at, double t_lo, double t_hi, GuardSample lo,
+                           GuardSample hi, double tol) {
+    if (lo.g < 0.0 && hi.g >= 0.0) {
+      return shrink(g_at, t_lo, t_hi, lo.g, hi.g, tol);
+    }
+    if (lo.g < 0.0 && hi.g < 0.0 && lo.dg > 0.0 && hi.dg < 0.0) {
+      const double t_max =
+          shrink([&](double t) { return -dg_at(t); }, t_lo, t_hi, -lo.dg, -hi.dg, tol);
+      const double g_max = g_at(t_max);
+      if (g_max >= 0.0) {
+        return shrink(g_at, t_lo, t_max, lo.g, g_max, tol);
+      }
+    } else if (lo.g >= 0.0 && hi.g >= 0.0 && lo.dg < 0.0 && hi.dg > 0.0) {
+      const double t_min = shrink(dg_at, t_lo, t_hi, lo.dg, hi.dg, tol);
+      const double g_min = g_at(t_min);
+      if (g_min < 0.0) {
+        return shrink(g_at, t_min, t_hi, g_min, hi.g, tol);
+      }
+    }
+    return std::numeric_limits<double>::infinity();
+  }
+
+  // Implemented in cvode_backend.cpp.
+  void ensure_memory(int n_state, int n_roots);
+  void free_memory();
+  void start_segment(int n_state, int n_roots, double t0, const double* x0, double t_end);
+  /// One CVode call (CV_ONE_STEP): t = the step end or CVODE's root; true at t_end.
+  bool step(double t_end, double& t);
+  [[nodiscard]] const double* returned_state() const;
+  /// The k-th derivative (0 or 1) of CVODE's interpolant at t, inside the last step.
+  const double* interpolate(double t, int k);
+  void finish_segment();
+  [[noreturn]] void fail(const char* what, int flag);
+  struct Callbacks;  // the C callbacks handed to CVODE
+  friend struct Callbacks;
+
+  BackendOptions options_;
+  BackendStats stats_;
+
+  // The mode being integrated (valid during advance()).
+  const void* flow_ = nullptr;
+  RhsFn rhs_ = nullptr;
+  GuardFn guards_ = nullptr;
+
+  // SUNDIALS objects (opaque here; see cvode_backend.cpp).
+  void* context_ = nullptr;  ///< SUNContext, created once
+  void* cvode_ = nullptr;    ///< CVODE memory for n_state_ unknowns and n_roots_ root functions
+  void* y_ = nullptr;        ///< N_Vector (n_state_): the solution CVODE returns
+  void* dky_ = nullptr;      ///< N_Vectors (n_state_): interpolated state and derivative
+  void* dky1_ = nullptr;
+  void* nls_ = nullptr;  ///< SUNNonlinearSolver: fixed-point iteration
+  int n_state_ = 0;
+  int n_roots_ = 0;
+  std::string error_;  ///< last CVODE error message (written only on failure)
+};
+
+}  // namespace slipwalk::events
