@@ -332,7 +332,9 @@ TEST(Spec, StudySpecsLoad) {
   const auto count = [&](const char* name) {
     return point_count(load_spec(dir / "ch2_inchworm" / name));
   };
-  EXPECT_EQ(count("fig2_3.toml"), 2U * 80U * 2U);
+  // Blocks add up: regime I for each mu (25 F x 2 methods), then regime II (2 mu x 60 F x 2).
+  EXPECT_EQ(count("fig2_3.toml"), 2U * 25U * 2U + 2U * 60U * 2U);
+  EXPECT_EQ(count("scaling.toml"), 5U * 50U);
   EXPECT_EQ(count("regression.toml"), 20U * 40U);
   EXPECT_EQ(count("eq2_6_map.toml"), 40U * 60U);
   EXPECT_EQ(count("hard_cases.toml"), 6U * 6U);
