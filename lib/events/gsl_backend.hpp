@@ -32,13 +32,13 @@
 // dimension (a call with another N reallocates them once). Nothing is allocated per step.
 #include <algorithm>
 #include <array>
-#include <boost/math/tools/toms748_solve.hpp>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
 
+#include "events/guard_search.hpp"
 #include "events/hybrid_system.hpp"
 
 struct gsl_odeiv2_step_struct;
@@ -96,11 +96,11 @@ class GslBackend {
       // from the step start.
       double t_event = std::numeric_limits<double>::infinity();
       int event = -1;
-      const double tol = event_tolerance(t_hi);
+      const double tol = guard_search::event_tolerance(options_, t_hi);
       for (int k = 0; k < flow.n_guards; ++k) {
         const AffineGuard<N>& guard = flow.guard[k];
         const GuardSample hi = sample(guard, y_.data(), step_end_derivative());
-        const double t_k = first_rise(
+        const double t_k = guard_search::first_rise(
             [&](double tt) {
               return sample(guard, reintegrate(t_lo, tt - t_lo), dy_try_.data()).g;
             },
@@ -134,6 +134,7 @@ class GslBackend {
   [[nodiscard]] const BackendStats& stats() const { return stats_; }
 
  private:
+  using GuardSample = guard_search::GuardSample;
   using RhsFn = void (*)(const void* flow, const double* y, double* dydt);
 
   /// The mode's vector field [p; v]' = [v; a]: all a backend knows of the flow.
@@ -146,12 +147,6 @@ class GslBackend {
     }
   }
 
-  /// A guard's value and rate of change at one time.
-  struct GuardSample {
-    double g = -1.0;
-    double dg = 0.0;
-  };
-
   template <int N>
   GuardSample sample(const AffineGuard<N>& g, const double* y, const double* dy) {
     ++stats_.guard_evals;
@@ -161,56 +156,6 @@ class GslBackend {
       s.dg += g.wp(i) * dy[i] + g.wv(i) * dy[N + i];
     }
     return s;
-  }
-
-  [[nodiscard]] double event_tolerance(double t) const {
-    return options_.event_tol > 0.0 ? options_.event_tol
-                                    : 4.0 * DBL_EPSILON * std::max(1.0, std::abs(t));
-  }
-
-  /// Shrinks [a, b] with f(a) < 0 ≤ f(b) to width ≤ tol (TOMS 748, then bisection if it runs
-  /// out of iterations); returns the upper end, where f ≥ 0.
-  template <class F>
-  static double shrink(F&& f, double a, double b, double fa, double fb, double tol) {
-    std::uintmax_t iterations = 100;
-    auto [lo, hi] = boost::math::tools::toms748_solve(
-        f, a, b, fa, fb, [tol](double u, double v) { return std::abs(v - u) <= tol; }, iterations);
-    while (hi - lo > tol) {
-      const double mid = lo + 0.5 * (hi - lo);
-      if (mid <= lo || mid >= hi) {
-        break;
-      }
-      (f(mid) < 0.0 ? lo : hi) = mid;
-    }
-    return hi;
-  }
-
-  /// The step-end test: the first time in (t_lo, t_hi] at which a guard rises through zero, or
-  /// +inf, from g and dg/dt at the step ends (lo, hi) and evaluators g_at, dg_at inside the
-  /// step. Besides a plain sign change it finds a rise hidden inside the step: a maximum
-  /// (dg/dt from + to −) that reaches zero, or a minimum (dg/dt from − to +) below zero
-  /// followed by a rise; dg/dt is assumed to change sign at most once per step.
-  template <class GAt, class DgAt>
-  static double first_rise(GAt&& g_at, DgAt&& dg_at, double t_lo, double t_hi, GuardSample lo,
-                           GuardSample hi, double tol) {
-    if (lo.g < 0.0 && hi.g >= 0.0) {
-      return shrink(g_at, t_lo, t_hi, lo.g, hi.g, tol);
-    }
-    if (lo.g < 0.0 && hi.g < 0.0 && lo.dg > 0.0 && hi.dg < 0.0) {
-      const double t_max =
-          shrink([&](double t) { return -dg_at(t); }, t_lo, t_hi, -lo.dg, -hi.dg, tol);
-      const double g_max = g_at(t_max);
-      if (g_max >= 0.0) {
-        return shrink(g_at, t_lo, t_max, lo.g, g_max, tol);
-      }
-    } else if (lo.g >= 0.0 && hi.g >= 0.0 && lo.dg < 0.0 && hi.dg > 0.0) {
-      const double t_min = shrink(dg_at, t_lo, t_hi, lo.dg, hi.dg, tol);
-      const double g_min = g_at(t_min);
-      if (g_min < 0.0) {
-        return shrink(g_at, t_min, t_hi, g_min, hi.g, tol);
-      }
-    }
-    return std::numeric_limits<double>::infinity();
   }
 
   // Implemented in gsl_backend.cpp.

@@ -61,7 +61,7 @@ concept PiecewiseConstantAccelerationSystem = requires(const S& sys, typename S:
 struct BackendOptions {
   double rtol = 1e-10;     ///< relative tolerance of the ODE steps
   double atol = 1e-12;     ///< absolute tolerance of the ODE steps
-  double event_tol = 0.0;  ///< time tolerance of guard location; 0 = backend default (~1e-14 s·t)
+  double event_tol = 0.0;  ///< s, time tolerance of guard location; 0 = 4ε·max(1, |t|)
 };
 
 /// Work counters of one backend; summed over all segments it integrated.

@@ -4,8 +4,11 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "events/cvode_backend.hpp"
 #include "events/exact_backend.hpp"
+#include "events/gsl_backend.hpp"
 #include "events/hybrid_run.hpp"
+#include "events/odeint_backend.hpp"
 #include "inchworm/instant_swap.hpp"
 
 namespace slipwalk::inchworm {
@@ -79,11 +82,23 @@ void write_trace(const Params& p, Method method, const TraceOptions& opt, std::o
       run_trace(p, backend, opt, out);
       return;
     }
-    // numeric backends:
-    default:
-      throw core::ComputationError(std::string("trace: method ") + method_name(method) +
-                                   " is not built");
+    case Method::kCvode: {
+      events::CvodeBackend backend(bo);
+      run_trace(p, backend, opt, out);
+      return;
+    }
+    case Method::kOdeint: {
+      events::OdeintBackend backend(bo);
+      run_trace(p, backend, opt, out);
+      return;
+    }
+    case Method::kGsl: {
+      events::GslBackend backend(bo);
+      run_trace(p, backend, opt, out);
+      return;
+    }
   }
+  throw core::ComputationError(std::string("trace: unknown method ") + method_name(method));
 }
 
 }  // namespace slipwalk::inchworm
