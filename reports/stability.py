@@ -48,9 +48,9 @@ def main():
         ref = float(t["v_ss"][se][0]) if np.any(se) else None
         regime = 1 if F <= ms * c.M * c.G else 2
         rows_html.append(
-            f"<tr class='group'><td colspan='6'>case {i + 1}: F = {F:.9g} N, μ = {mu:g}, "
-            f"μ_s = {ms:g} (F/(μ_s m g) = {F / (ms * c.m * c.G):.6g}, F/(μ_s M g) = "
-            f"{F / (ms * c.M * c.G):.6g}; regime {'I' if regime == 1 else 'II'})</td></tr>")
+            f"<tr class='group'><td colspan='6'>case {i + 1}: F = {F:.12g} N, μ = {mu:g}, "
+            f"μ_s = {ms:g} (F/(μ_s m g) = {F / (ms * c.m * c.G):.12g}, F/(μ_s M g) = "
+            f"{F / (ms * c.M * c.G):.12g}; regime {'I' if regime == 1 else 'II'})</td></tr>")
         for j, m in enumerate(methods):
             sm = np.flatnonzero(sc & (meth == m))
             if sm.size == 0:

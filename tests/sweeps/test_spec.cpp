@@ -337,7 +337,7 @@ TEST(Spec, StudySpecsLoad) {
   EXPECT_EQ(count("scaling.toml"), 5U * 50U);
   EXPECT_EQ(count("regression.toml"), 20U * 40U);
   EXPECT_EQ(count("eq2_6_map.toml"), 40U * 60U);
-  EXPECT_EQ(count("hard_cases.toml"), 6U * 6U);
+  EXPECT_EQ(count("hard_cases.toml"), 8U * 6U);
   EXPECT_EQ(count("cost.toml"), 2U * 4U * 7U + 2U * 2U);
   EXPECT_EQ(count("convergence.toml"), 2U);
 }
