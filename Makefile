@@ -14,7 +14,7 @@ DEBIAN_PACKAGES := cmake g++ make pkg-config git \
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev \
   python3 python3-matplotlib python3-numpy
 
-.PHONY: all deps build test reproduce reproduce-quick bench format tidy clean
+.PHONY: all deps build test reproduce reproduce-quick bench format format-check tidy clean
 
 all: build
 
@@ -51,8 +51,11 @@ bench: build
 format:
 	find lib sweeps tests bench -name '*.[ch]pp' | xargs clang-format -i
 
+format-check:
+	find lib sweeps tests -name '*.[ch]pp' | xargs clang-format --dry-run --Werror
+
 tidy: build
-	find lib sweeps -name '*.cpp' | xargs clang-tidy -p $(BUILD) --quiet
+	find lib sweeps -name '*.cpp' | xargs -P $(JOBS) -n 4 clang-tidy -p $(BUILD) --quiet
 
 clean:
 	rm -rf $(BUILD)

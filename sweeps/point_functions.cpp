@@ -29,12 +29,14 @@ class Reader {
       : point_(p) {
     for (const auto& [key, value] : p.values) {
       if (std::find(accepted.begin(), accepted.end(), key) == accepted.end()) {
-        std::string list;
-        for (auto a : accepted) {
-          list += (list.empty() ? "" : ", ") + std::string(a);
+        std::string message = "unknown key '" + key + "' for kind ";
+        message += kind;
+        message += "; expected one of ";
+        for (std::size_t i = 0; i < accepted.size(); ++i) {
+          message += i ? ", " : "";
+          message += accepted[i];
         }
-        throw InputError(value.origin, "unknown key '" + key + "' for kind " + std::string(kind) +
-                                           "; expected one of " + list);
+        throw InputError(value.origin, message);
       }
     }
   }

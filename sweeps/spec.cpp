@@ -302,7 +302,9 @@ void apply_quick(Spec& spec, const toml::node& node, const std::string& path, in
   }
   for (auto&& [k, v] : *t) {
     if (k == "params") {
-      for (const auto& [key, value] : parse_named(v, "quick.params", path)) {
+      for (const auto& named : parse_named(v, "quick.params", path)) {
+        const auto& key = named.first;  // a plain reference: lambdas may not capture bindings
+        const auto& value = named.second;
         for (const Block& b : spec.blocks) {
           const bool in_points = std::any_of(b.points.begin(), b.points.end(),
                                              [&](const auto& p) { return has_key(p, key); });

@@ -228,7 +228,7 @@ std::vector<std::filesystem::path> find_studies(const std::filesystem::path& stu
 std::filesystem::path write_trace_job(const Study& study, const TraceJob& job,
                                       const std::filesystem::path& data_dir) {
   const auto start = std::chrono::steady_clock::now();
-  const std::filesystem::path csv = data_dir / study.id / (job.name + ".csv");
+  std::filesystem::path csv = data_dir / study.id / (job.name + ".csv");
   {
     core::AtomicFile file(csv);
     inchworm::write_trace(job.params, job.method, job.options, file.stream());

@@ -2,6 +2,7 @@
 // [STUDY...]: every study's traces and sweeps, then the report (sweeps/README.md).
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>  // environ
 
 #include <cerrno>
 #include <chrono>
@@ -17,8 +18,6 @@
 #include "sweeps/runner.hpp"
 #include "sweeps/spec.hpp"
 #include "sweeps/study.hpp"
-
-extern char** environ;
 
 namespace slipwalk::cli {
 
@@ -40,6 +39,7 @@ std::string seconds(double s) {
 /// Runs argv[0] with arguments, no shell; returns its exit status (-1: could not start).
 int run_program(const std::vector<std::string>& args) {
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const auto& a : args) {
     argv.push_back(const_cast<char*>(a.c_str()));
   }
