@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace slipwalk::core {
@@ -14,8 +15,14 @@ std::string format_double(double value) {
   if (std::isinf(value)) {
     return value > 0 ? "inf" : "-inf";
   }
+  // The shortest of %.15g, %.16g, %.17g that reads back as the same double.
   std::array<char, 32> buffer{};
-  std::snprintf(buffer.data(), buffer.size(), "%.17g", value);
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buffer.data(), buffer.size(), "%.*g", digits, value);
+    if (std::strtod(buffer.data(), nullptr) == value) {
+      break;
+    }
+  }
   return buffer.data();
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// A small CSV table writer: a header, then rows of numbers or text, doubles printed with 17
-// significant digits so that a value read back is the value written (round-trip exact).
+// A small CSV table writer: a header, then rows of numbers or text, doubles printed so that a
+// value read back is the value written (round-trip exact).
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -8,7 +8,8 @@
 
 namespace slipwalk::core {
 
-/// Formats a double so that it reads back bit-identical ("%.17g"); NaN and inf as nan/inf.
+/// Formats a double in the fewest digits (15–17) that read back bit-identical; NaN and inf as
+/// nan/inf.
 std::string format_double(double value);
 
 class CsvWriter {

@@ -19,6 +19,8 @@ TEST(Csv, DoublesRoundTripExactly) {
   for (double v : {0.1, 1.0 / 3.0, 1.1113692880861064, 4.9e-324, 1.7976931348623157e308, -0.0}) {
     EXPECT_EQ(std::strtod(format_double(v).c_str(), nullptr), v) << format_double(v);
   }
+  EXPECT_EQ(format_double(9.81), "9.81");  // the shortest form, not 9.8100000000000005
+  EXPECT_EQ(format_double(0.1 + 0.2), "0.30000000000000004");
   EXPECT_EQ(format_double(std::numeric_limits<double>::quiet_NaN()), "nan");
   EXPECT_EQ(format_double(-std::numeric_limits<double>::infinity()), "-inf");
 }
