@@ -10,8 +10,9 @@
 namespace slipwalk::events {
 
 /// First τ ≥ 0 at which c0 + c1 τ + c2 τ² rises through zero, or +inf if it never does.
-/// Roots come from the cancellation-free quadratic formula; a root at τ = 0 counts only when the
-/// guard is already rising (c1 > 0), so a guard that was just reset to zero does not re-fire.
+/// Roots come from the cancellation-free quadratic formula. At τ = 0 a guard fires only if it is
+/// on or above zero and rising (c0 ≥ 0, c1 > 0): a guard just reset to zero and falling does not
+/// re-fire, and an inconsistent start above a rising guard fires at once instead of being missed.
 double first_rising_root(double c0, double c1, double c2);
 
 template <int N>

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "events/exact_backend.hpp"
 
@@ -32,6 +33,48 @@ TEST(FirstRisingRoot, QuadraticGuards) {
   EXPECT_DOUBLE_EQ(first_rising_root(0.0, -1.0, 1.0), 1.0);
   // Cancellation-prone: tiny c0 with large c1 keeps full relative precision.
   EXPECT_NEAR(first_rising_root(-1e-12, 1e4, 1.0), 1e-16, 1e-31);
+}
+
+// Random quadratics with known roots r1 < r2, g(τ) = c2 (τ − r1)(τ − r2): the first rising
+// crossing at τ > 0 is the smallest root r > 0 with g'(r) = c2 (2r − r1 − r2) > 0.
+TEST(FirstRisingRoot, RandomQuadraticsAgainstTheirConstructedRoots) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> root(-10.0, 10.0);
+  std::uniform_real_distribution<double> log_scale(-6.0, 6.0);
+  int checked = 0;
+  for (int i = 0; i < 100000; ++i) {
+    double r1 = root(rng);
+    double r2 = root(rng);
+    if (r1 > r2) {
+      std::swap(r1, r2);
+    }
+    if (r2 - r1 < 1e-6 * (std::abs(r1) + std::abs(r2))) {
+      continue;  // nearly a double root: the crossing is ill-conditioned
+    }
+    const double c2 = ((rng() & 1U) ? 1.0 : -1.0) * std::pow(10.0, log_scale(rng));
+    const double c1 = -c2 * (r1 + r2);
+    const double c0 = c2 * r1 * r2;
+    // A guard already on or above zero and rising fires at once (an inconsistent start is not
+    // silently skipped); otherwise the first rising root.
+    double expected = c0 >= 0.0 && c1 > 0.0 ? 0.0 : kNever;
+    for (double r : {r1, r2}) {
+      if (r > 0.0 && c2 * (2.0 * r - r1 - r2) > 0.0) {
+        expected = std::min(expected, r);
+      }
+    }
+    const double got = first_rising_root(c0, c1, c2);
+    if (expected == kNever) {
+      EXPECT_EQ(got, kNever) << c0 << " " << c1 << " " << c2;
+    } else {
+      // Rounding the constructed coefficients moves a root by about ε |r1 r2 + (r1 + r2) r| /
+      // |g'(r)/c2| — the conditioning of a root at distance r2 − r1 from the other.
+      const double scale = std::abs(r1) + std::abs(r2) + 1.0;
+      const double tol = 16.0 * 2.2e-16 * scale * scale / (r2 - r1);
+      EXPECT_NEAR(got, expected, tol) << c0 << " " << c1 << " " << c2;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 90000);
 }
 
 TEST(ExactBackend, ConstantAccelerationSegment) {
