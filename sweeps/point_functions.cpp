@@ -364,8 +364,8 @@ PointResult run_convergence(const Point& point) {
     double total_displacement = 0.0;
     double total_time = 0.0;
     for (long long cycle = 1; cycle <= c.cycles; ++cycle) {
-      const auto a = inchworm::simulate_stroke(sys, backend, mode, x);
-      const auto b = inchworm::simulate_stroke(sys, backend, mode, x);
+      const auto a = inchworm::simulate_half_cycle(sys, backend, mode, x);
+      const auto b = inchworm::simulate_half_cycle(sys, backend, mode, x);
       const double average = (a.displacement + b.displacement) / (a.duration + b.duration);
       total_displacement += a.displacement + b.displacement;
       total_time += a.duration + b.duration;

@@ -36,6 +36,10 @@ void validate(const Params& p) {
     require(p.mu_s >= p.mu, "--mu-s",
             "the static coefficient must be at least mu = " + num(p.mu) + ", got " + num(p.mu_s));
   }
+  if (p.model == SwapModel::kMass) {
+    require(std::isfinite(p.alpha) && p.alpha > 0.0, "--alpha",
+            "the swap force factor must be a positive number, got " + num(p.alpha));
+  }
   const double threshold = p.static_mu() * p.m * p.g;
   require(p.F > threshold, "--force",
           "F = " + num(p.F) + " N does not exceed mu_s*m*g = " + num(threshold) +

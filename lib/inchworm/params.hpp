@@ -5,6 +5,12 @@
 
 namespace slipwalk::inchworm {
 
+/// How the load moves from one end mass to the other after each stroke.
+enum class SwapModel {
+  kInstant,  ///< §2.2: the two masses swap positions instantaneously
+  kMass,     ///< §2.5 ("dm"): Δm = M − m is pushed across by α F while the ends are held apart
+};
+
 struct Params {
   double m = 1.0;       ///< kg, the smaller point mass (x); valid: > 0
   double M = 1.5;       ///< kg, the larger point mass (y); valid: > m (else no net motion)
@@ -14,10 +20,13 @@ struct Params {
   double mu = 1.0;      ///< dynamic friction coefficient; valid: > 0 (thesis range 0.05–1)
   double mu_s = std::numeric_limits<double>::quiet_NaN();  ///< static coefficient; NaN = mu; ≥ mu
   double F = 45.0;  ///< N, actuator force magnitude; valid: > mu_s·m·g (else m never moves)
+  SwapModel model = SwapModel::kInstant;  ///< instant swap (§2.2) or moving Δm (§2.5, "dm")
+  double alpha = 1.0;  ///< F_Δm = α F pushes Δm across (model kMass); valid: > 0
 
   [[nodiscard]] double static_mu() const { return std::isnan(mu_s) ? mu : mu_s; }
   [[nodiscard]] double stroke() const { return L_max - L_min; }          ///< ΔL
   [[nodiscard]] double swap_ratio() const { return (M - m) / (M + m); }  ///< ρ: CoM jump / d
+  [[nodiscard]] double moving_mass() const { return M - m; }             ///< Δm (§2.5)
 };
 
 /// Throws core::InputError naming the offending option (--force, --mu, ...) when a parameter is

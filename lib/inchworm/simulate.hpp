@@ -1,7 +1,7 @@
 #pragma once
-// v_ss by event-driven simulation (§2.2.2, §2.3): start at rest with x − y = L_min, integrate
-// stroke after stroke with any backend, and average the CoM speed over each cycle (two strokes,
-// the swap jumps included, eq. 2.5).
+// v_ss by event-driven simulation (§2.2.2, §2.3, §2.5.1): start at rest with x − y = L_min,
+// integrate half cycle after half cycle (a stroke and its swap, instant or with moving Δm) with
+// any backend, and average the CoM speed over each cycle (two half cycles, eq. 2.5).
 //
 // When to stop. The thesis stopped when two consecutive cycle averages differed by 1e-4. The
 // cycle averages approach v_ss geometrically, V_j − v_ss ≈ C λ^j with λ the per-cycle
@@ -21,6 +21,7 @@
 #include "core/error.hpp"
 #include "events/hybrid_run.hpp"
 #include "inchworm/instant_swap.hpp"
+#include "inchworm/mass_swap.hpp"
 
 namespace slipwalk::inchworm {
 
@@ -51,6 +52,8 @@ struct SimulationSummary {
   double period = 0.0;           ///< mean stroke duration of the last cycle
   double c0 = 0.0;               ///< CoM velocity at the start of the last cycle's first stroke
   Regime regime = Regime::kOne;  ///< what M did in the last stroke: stayed stuck (I) or slid (II)
+  bool swap_stopped = false;     ///< dm model: the m–m body stopped and stuck in a swap of the
+                                 ///< last cycle (§2.5.2, "stop during swap")
   double est_error = 0.0;        ///< estimated |v_ss(last cycle) − v_ss(limit)| / v_ss
   double last_difference = 0.0;  ///< |V_j − V_{j−1}| / V_j, what the thesis' criterion looks at
   double contraction = 0.0;      ///< estimated per-cycle contraction λ
@@ -59,43 +62,54 @@ struct SimulationSummary {
   std::vector<double> cycle_averages;  ///< V_0, V_1, ... (kept only if record_cycles)
 };
 
-/// Per stroke, what the simulation saw.
-struct StrokeRecord {
+/// Per half cycle (a stroke and its swap), what the simulation saw.
+struct HalfCycleRecord {
   double duration;
-  double displacement;  ///< CoM displacement including the closing swap jump
+  double displacement;  ///< CoM displacement, the swap included
   double c_start;       ///< CoM velocity at the start
-  bool large_mass_slid_back;
+  unsigned flags;       ///< System::event_flags of its events, or-ed
 };
 
-/// Integrates one stroke from (mode, x) at t = 0 until the length limit and its reset.
-template <class Backend>
-StrokeRecord simulate_stroke(const InstantSwapSystem& sys, Backend& backend,
-                             InstantSwapSystem::Mode& mode, InstantSwapSystem::StateType& x) {
-  StrokeRecord rec{0.0, 0.0, sys.com_velocity(x), false};
+/// The inchworm systems: hybrid systems with a half-cycle event, a rest state, a CoM.
+template <class S>
+concept InchwormSystem = events::PiecewiseConstantAccelerationSystem<S> &&
+    requires(const S& sys, const typename S::StateType& x, const events::Event<S>& ev) {
+  { S::kHalfCycleEnd } -> std::convertible_to<int>;
+  { sys.rest_state() } -> std::same_as<typename S::StateType>;
+  { sys.initial_mode(x) } -> std::same_as<typename S::Mode>;
+  { sys.com(x) } -> std::convertible_to<double>;
+  { sys.com_velocity(x) } -> std::convertible_to<double>;
+  { S::event_flags(ev) } -> std::convertible_to<unsigned>;
+};
+
+/// Integrates one half cycle from (mode, x) at t = 0 until its closing event and reset, then
+/// moves the CoM back to the origin (translation invariance keeps the dynamics unchanged).
+template <InchwormSystem System, class Backend>
+HalfCycleRecord simulate_half_cycle(const System& sys, Backend& backend,
+                                    typename System::Mode& mode, typename System::StateType& x) {
+  HalfCycleRecord rec{0.0, 0.0, sys.com_velocity(x), 0U};
   const double c_before = sys.com(x);
   double t = 0.0;
   events::RunLimits limits;
-  limits.max_events = 64;  // a stroke has at most 3 events; more means a Zeno loop
+  limits.max_events = 64;  // a half cycle has at most 5 events; more means a Zeno loop
   bool ended = false;
   const auto summary = events::run_hybrid(sys, backend, t, mode, x, limits, [&](const auto& ev) {
-    if (ev.guard_id == InstantSwapSystem::kLargeStops && ev.mode_after.slide_M < 0) {
-      rec.large_mass_slid_back = true;
-    }
-    if (ev.guard_id == InstantSwapSystem::kLengthLimit) {
+    rec.flags |= System::event_flags(ev);
+    if (ev.guard_id == System::kHalfCycleEnd) {
       ended = true;
       return false;
     }
     return true;
   });
   if (!ended) {
-    throw core::ComputationError("stroke did not reach the length limit: " + summary.message);
+    throw core::ComputationError("half cycle did not end: " + summary.message);
   }
   rec.duration = t;
-  rec.displacement = sys.com(x) - c_before;
-  // Move the CoM back to the origin: translation invariance keeps the dynamics unchanged.
   const double c = sys.com(x);
-  x(0) -= c;
-  x(1) -= c;
+  rec.displacement = c - c_before;
+  for (int i = 0; i < System::kBodies; ++i) {
+    x(i) -= c;
+  }
   return rec;
 }
 
@@ -121,13 +135,12 @@ inline RemainingError remaining_error(const std::vector<double>& v) {
   return {std::abs(d1) + std::abs(d2), std::nan("")};
 }
 
-template <class Backend>
-SimulationSummary steady_state_by_simulation(const Params& p, Backend& backend,
+template <InchwormSystem System, class Backend>
+SimulationSummary steady_state_by_simulation(const System& sys, Backend& backend,
                                              const SimulationOptions& opt = {},
                                              bool record_cycles = false) {
-  const InstantSwapSystem sys(p);
   auto x = sys.rest_state();
-  auto mode = sys.mode_of(x, 1);
+  auto mode = sys.initial_mode(x);
   SimulationSummary out;
   std::vector<double> averages;  // one per cycle; a run keeps at most max_strokes/2 of them
   double total_displacement = 0.0;
@@ -136,8 +149,8 @@ SimulationSummary steady_state_by_simulation(const Params& p, Backend& backend,
   try {
     for (long long cycle = 0; 2 * cycle < opt.max_strokes; ++cycle) {
       const double c_start = sys.com_velocity(x);
-      const StrokeRecord a = simulate_stroke(sys, backend, mode, x);
-      const StrokeRecord b = simulate_stroke(sys, backend, mode, x);
+      const HalfCycleRecord a = simulate_half_cycle(sys, backend, mode, x);
+      const HalfCycleRecord b = simulate_half_cycle(sys, backend, mode, x);
       out.strokes += 2;
       const double avg = (a.displacement + b.displacement) / (a.duration + b.duration);
       averages.push_back(avg);
@@ -148,7 +161,10 @@ SimulationSummary steady_state_by_simulation(const Params& p, Backend& backend,
       out.v_ss = reported;
       out.period = 0.5 * (a.duration + b.duration);
       out.c0 = c_start;
-      out.regime = b.large_mass_slid_back ? Regime::kTwo : Regime::kOne;
+      out.regime = (b.flags & System::kLargeMassSlidBack) != 0U ? Regime::kTwo : Regime::kOne;
+      if constexpr (requires { System::kSwapStopped; }) {
+        out.swap_stopped = ((a.flags | b.flags) & System::kSwapStopped) != 0U;
+      }
       const auto j = static_cast<long long>(averages.size()) - 1;
       if (j >= 1) {
         out.last_difference = std::abs(reported - previous_reported) / std::abs(reported);
@@ -181,6 +197,17 @@ SimulationSummary steady_state_by_simulation(const Params& p, Backend& backend,
   }
   out.stats = backend.stats();
   return out;
+}
+
+/// The model chosen once per run (Params::model); the per-step code never branches on it.
+template <class Backend>
+SimulationSummary steady_state_by_simulation(const Params& p, Backend& backend,
+                                             const SimulationOptions& opt = {},
+                                             bool record_cycles = false) {
+  if (p.model == SwapModel::kMass) {
+    return steady_state_by_simulation(MassSwapSystem(p), backend, opt, record_cycles);
+  }
+  return steady_state_by_simulation(InstantSwapSystem(p), backend, opt, record_cycles);
 }
 
 }  // namespace slipwalk::inchworm

@@ -10,60 +10,87 @@
 #include "events/hybrid_run.hpp"
 #include "events/odeint_backend.hpp"
 #include "inchworm/instant_swap.hpp"
+#include "inchworm/mass_swap.hpp"
 
 namespace slipwalk::inchworm {
 
 namespace {
 
-using Sys = InstantSwapSystem;
-
-void row(core::CsvWriter& csv, const Sys& sys, double t, const Sys::StateType& x, Sys::Mode mode,
-         const char* event) {
-  csv.cell(t).cell(x(0)).cell(x(1)).cell(sys.com(x)).cell(x(2)).cell(x(3));
-  csv.cell(sys.com_velocity(x)).cell(int{mode.slide_m}).cell(int{mode.slide_M});
+/// One row: both systems write the same columns; the instant model has no separate Δm, so its
+/// z is y (Δm "is" in M) and its phase is always the stroke.
+template <class System>
+void row(core::CsvWriter& csv, const System& sys, double t, const typename System::StateType& x,
+         typename System::Mode mode, const char* event) {
+  constexpr int n = System::kBodies;
+  const double z = n == 3 ? x(2) : x(1);
+  csv.cell(t).cell(x(0)).cell(x(1)).cell(z).cell(sys.com(x));
+  csv.cell(x(n)).cell(x(n + 1)).cell(n == 3 ? x(n + 2) : x(n + 1)).cell(sys.com_velocity(x));
+  if constexpr (requires { mode.phase; }) {
+    csv.cell(int{mode.phase}).cell(int{mode.slide_x}).cell(int{mode.slide_y});
+  } else {
+    csv.cell(0).cell(int{mode.slide_m}).cell(int{mode.slide_M});
+  }
   csv.cell(int{mode.side}).cell(event);
   csv.end_row();
 }
 
 const char* event_name(int guard_id) {
+  // The two systems share the ids 0–2 (kSmallStops, kLargeStops, kLengthLimit).
   switch (guard_id) {
-    case Sys::kSmallStops:
+    case InstantSwapSystem::kSmallStops:
       return "m_stops";
-    case Sys::kLargeStops:
+    case InstantSwapSystem::kLargeStops:
       return "M_stops";
-    default:
+    case InstantSwapSystem::kLengthLimit:
       return "collision";
+    case MassSwapSystem::kBodyStops:
+      return "body_stops";
+    default:
+      return "arrival";
   }
 }
 
-template <class Backend>
-void run_trace(const Params& p, Backend& backend, const TraceOptions& opt, std::ostream& out) {
-  const Sys sys(p);
-  core::CsvWriter csv(
-      out, {"t", "x", "y", "com", "xdot", "ydot", "comdot", "slide_m", "slide_M", "side", "event"});
+template <class System, class Backend>
+void run_trace(const System& sys, Backend& backend, const TraceOptions& opt, std::ostream& out) {
+  core::CsvWriter csv(out, {"t", "x", "y", "z", "com", "xdot", "ydot", "zdot", "comdot", "phase",
+                            "slide_x", "slide_y", "side", "event"});
   auto x = sys.rest_state();
-  auto mode = sys.mode_of(x, 1);
+  auto mode = sys.initial_mode(x);
   double t = 0.0;
   row(csv, sys, t, x, mode, "start");
-  long long strokes = 0;
+  long long half_cycles = 0;
   const long long wanted = 2LL * opt.cycles;
   events::RunLimits limits;
   limits.max_events = 64 * (wanted + 1);
   const auto summary = events::run_hybrid(
       sys, backend, t, mode, x, limits,
-      [&](const events::Event<Sys>& ev) {
-        const bool collision = ev.guard_id == Sys::kLengthLimit;
+      [&](const events::Event<System>& ev) {
+        // A collision or an arrival changes velocities (and labels): a row before and after.
+        const bool impact = ev.guard_id == InstantSwapSystem::kLengthLimit ||
+                            ev.guard_id == MassSwapSystem::kArrival;
+        const std::string name = event_name(ev.guard_id);
         row(csv, sys, ev.t, ev.x_before, ev.mode_before,
-            collision ? "collision_before" : event_name(ev.guard_id));
-        if (collision) {
-          row(csv, sys, ev.t, ev.x_after, ev.mode_after, "collision_after");
-          ++strokes;
+            impact ? (name + "_before").c_str() : name.c_str());
+        if (impact) {
+          row(csv, sys, ev.t, ev.x_after, ev.mode_after, (name + "_after").c_str());
         }
-        return strokes < wanted;
+        if (ev.guard_id == System::kHalfCycleEnd) {
+          ++half_cycles;
+        }
+        return half_cycles < wanted;
       },
-      [&](double ts, const Sys::StateType& xs) { row(csv, sys, ts, xs, mode, ""); });
+      [&](double ts, const typename System::StateType& xs) { row(csv, sys, ts, xs, mode, ""); });
   if (summary.status != events::RunStatus::kObserverStopped) {
     throw core::ComputationError("trace stopped early: " + summary.message);
+  }
+}
+
+template <class Backend>
+void run_trace(const Params& p, Backend& backend, const TraceOptions& opt, std::ostream& out) {
+  if (p.model == SwapModel::kMass) {
+    run_trace(MassSwapSystem(p), backend, opt, out);
+  } else {
+    run_trace(InstantSwapSystem(p), backend, opt, out);
   }
 }
 

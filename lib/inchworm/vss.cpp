@@ -4,6 +4,7 @@
 #include <chrono>
 #include <utility>
 
+#include "core/error.hpp"
 #include "events/cvode_backend.hpp"
 #include "events/exact_backend.hpp"
 #include "events/gsl_backend.hpp"
@@ -55,6 +56,7 @@ VssResult simulate(const Params& p, Method method, const VssOptions& opt) {
   r.period = s.period;
   r.c0 = s.c0;
   r.regime = s.regime;
+  r.swap_stopped = s.swap_stopped;
   r.est_error = s.est_error;
   r.last_difference = s.last_difference;
   r.contraction = s.contraction;
@@ -91,10 +93,13 @@ VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
   try {
     switch (method) {
       case Method::kExact:
-        r = from_steady_state(method, steady_state_closed_form(p));
-        break;
       case Method::kRootfind:
-        r = from_steady_state(method, steady_state_fixed_point(p));
+        if (p.model == SwapModel::kMass) {
+          // dm model closed form: see mass_swap_closed_form.hpp (added with issue 3).
+          throw core::ComputationError("the dm model has no closed form yet");
+        }
+        r = from_steady_state(method, method == Method::kExact ? steady_state_closed_form(p)
+                                                               : steady_state_fixed_point(p));
         break;
       case Method::kAnalytic:
         r = simulate<events::ExactBackend>(p, method, opt);

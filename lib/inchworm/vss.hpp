@@ -44,7 +44,8 @@ struct VssResult {
   double period = 0.0;  ///< s, one stroke
   double c0 = 0.0;      ///< m/s, CoM velocity at the start of a steady stroke
   Regime regime = Regime::kOne;
-  double est_error = 0.0;  ///< estimated remaining relative error (0 for closed forms)
+  bool swap_stopped = false;  ///< dm model: the m–m body stopped and stuck during a swap
+  double est_error = 0.0;     ///< estimated remaining relative error (0 for closed forms)
   double last_difference = 0.0;
   double contraction = 0.0;  ///< per-cycle contraction λ (closed forms: exact; else estimated)
   long long strokes = 0;

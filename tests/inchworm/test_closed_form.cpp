@@ -59,7 +59,7 @@ TEST(StrokeMap, MatchesOneIntegratedStroke) {
       x(3) = c0;
       auto mode = sys.mode_of(x, 1);
       events::ExactBackend backend;
-      const StrokeRecord rec = simulate_stroke(sys, backend, mode, x);
+      const HalfCycleRecord rec = simulate_half_cycle(sys, backend, mode, x);
       const Stroke st = stroke_map(p, c0);
       const double jump = p.swap_ratio() * p.L_max;
       EXPECT_NEAR(sys.com_velocity(x), st.c_next, 1e-13 * (1.0 + std::abs(c0)))
