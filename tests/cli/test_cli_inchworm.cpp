@@ -169,7 +169,8 @@ TEST(CliInchworm, TraceWritesCsv) {
                                         "--cycles", "2", "--dt", "0.01", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string text = read_text(out);
-  EXPECT_EQ(text.rfind("t,x,y,com,xdot,ydot,comdot,slide_m,slide_M,side,event\n", 0), 0U);
+  EXPECT_EQ(text.rfind("t,x,y,z,com,xdot,ydot,zdot,comdot,phase,slide_x,slide_y,side,event\n", 0),
+            0U);
   EXPECT_NE(text.find("collision_after"), std::string::npos);
   EXPECT_EQ(files_under(dir.path()), std::vector<std::string>{"trace.csv"});  // no temp files
 
