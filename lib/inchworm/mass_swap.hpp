@@ -18,8 +18,9 @@
 //     cone slides (backward after an extension stroke, forward after a contraction stroke) with
 //     dynamic friction, and stops and sticks again when its velocity reaches zero;
 //   - Δm moves on a rail between the end masses: if its free motion would press it into the end
-//     it just left (possible only for α F < μ g Δm, i.e. α < Δm/m·... tiny α), it is held there
-//     and the three slide together until the body stops ("held" mode).
+//     it just left, it is held there and the three slide together until the body stops ("held"
+//     mode). That happens after a contraction stroke when αF < μ g Δm, i.e. only for α < Δm/m
+//     (F > μ m g), = 0.5 with the thesis' masses.
 #include <cstdint>
 
 #include "events/hybrid_system.hpp"
