@@ -10,6 +10,7 @@
 #include "events/gsl_backend.hpp"
 #include "events/odeint_backend.hpp"
 #include "inchworm/closed_form.hpp"
+#include "inchworm/mass_swap_closed_form.hpp"
 
 namespace slipwalk::inchworm {
 
@@ -95,8 +96,18 @@ VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
       case Method::kExact:
       case Method::kRootfind:
         if (p.model == SwapModel::kMass) {
-          // dm model closed form: see mass_swap_closed_form.hpp (added with issue 3).
-          throw core::ComputationError("the dm model has no closed form yet");
+          // The dm model has no algebraic form of its fixed point: both methods return the GSL
+          // Brent fixed point of the hand-derived cycle map (mass_swap_closed_form.hpp).
+          const DmSteadyState s = dm_steady_state(p);
+          r.method = method;
+          r.message = "closed form (fixed point of the cycle map)";
+          r.v_ss = s.v_ss;
+          r.period = s.period;
+          r.c0 = s.c0;
+          r.regime = s.regime;
+          r.swap_stopped = s.swap_stopped;
+          r.contraction = s.contraction;  // per cycle: the cycle map's slope
+          break;
         }
         r = from_steady_state(method, method == Method::kExact ? steady_state_closed_form(p)
                                                                : steady_state_fixed_point(p));
