@@ -31,9 +31,9 @@ class InstantSwapSystem {
   /// The event that closes a half cycle (one stroke with its swap).
   static constexpr int kHalfCycleEnd = kLengthLimit;
 
-  /// Bits of event_flags(): what a half cycle did, for regime classification.
+  /// Bits of mode_flags(): what a half cycle did, for regime classification.
   enum Flags : unsigned {
-    kLargeMassSlidBack = 1U << 0U,  ///< M slid backward (regime II, two masses moving)
+    kLargeMassSlidBack = 1U << 0U,  ///< M driven backward (regime II, two masses moving)
   };
 
   /// slide: +1 sliding forward, −1 backward, 0 stuck. side = sgn(x − y): +1 extension stroke.
@@ -52,9 +52,10 @@ class InstantSwapSystem {
   /// The mode of a state: sliding masses by their velocity; masses at rest by static friction.
   [[nodiscard]] Mode mode_of(const StateType& x, std::int8_t side) const;
   [[nodiscard]] Mode initial_mode(const StateType& x) const { return mode_of(x, 1); }
-  template <class Event>
-  [[nodiscard]] static unsigned event_flags(const Event& ev) {
-    return ev.guard_id == kLargeStops && ev.mode_after.slide_M < 0 ? kLargeMassSlidBack : 0U;
+  /// What being in `mode` says about the half cycle: M sliding back while driven back
+  /// (F > μMg) is regime II, two masses moving (§2.3.1).
+  [[nodiscard]] unsigned mode_flags(Mode mode) const {
+    return mode.slide_M < 0 && accel_M_[0] < 0.0 ? kLargeMassSlidBack : 0U;
   }
   /// Both masses at rest, x − y = L_min, CoM at 0: the start of every thesis run (§2.3).
   [[nodiscard]] StateType rest_state() const;

@@ -58,9 +58,9 @@ class MassSwapSystem {
     friend bool operator==(const Mode&, const Mode&) = default;
   };
 
-  /// Bits of event_flags(): what a half cycle did, for regime classification.
+  /// Bits of mode_flags(): what a half cycle did, for regime classification.
   enum Flags : unsigned {
-    kLargeMassSlidBack = 1U << 0U,  ///< y slid backward in the stroke (two masses moving)
+    kLargeMassSlidBack = 1U << 0U,  ///< y was driven backward in the stroke (two masses moving)
     kSwapStopped = 1U << 1U,        ///< the m–m body came to rest and stuck during the swap
   };
 
@@ -77,13 +77,15 @@ class MassSwapSystem {
   [[nodiscard]] double com_velocity(const StateType& x) const {
     return (p_.m * (x(3) + x(4)) + dm_ * x(5)) / total_;
   }
-  template <class Event>
-  [[nodiscard]] static unsigned event_flags(const Event& ev) {
+  /// What being in `mode` says about the half cycle (Flags): a stroke mode with y sliding back
+  /// while driven back (F > μMg, so it accelerates backward) is two masses moving (§2.3.1); a
+  /// swap mode with the body stuck is a stop during the swap (§2.5.2).
+  [[nodiscard]] unsigned mode_flags(Mode mode) const {
     unsigned f = 0;
-    if (ev.guard_id == kLargeStops && ev.mode_after.slide_y < 0) {
+    if (mode.phase == kStroke && mode.slide_y < 0 && accel_M_[0] < 0.0) {
       f |= kLargeMassSlidBack;
     }
-    if (ev.guard_id == kBodyStops && ev.mode_after.slide_y == 0) {
+    if (mode.phase == kSwap && mode.slide_y == 0) {
       f |= kSwapStopped;
     }
     return f;

@@ -295,10 +295,14 @@ DmSteadyState dm_steady_state(const Params& p) {
   out.c_contraction = out.cycle.extension.c_next;
   out.v_ss = out.cycle.displacement / out.cycle.duration;
   out.period = 0.5 * out.cycle.duration;
-  out.regime = simulation_regime(out.cycle.contraction.stroke);
   out.regime_extension = stroke_regime(out.cycle.extension.stroke);
   out.regime_contraction = stroke_regime(out.cycle.contraction.stroke);
-  out.swap_stopped = out.cycle.extension.swap.stopped || out.cycle.contraction.swap.stopped;
+  out.regime = out.regime_contraction;
+  // "Stop during swap" (§2.5.2): the body stood still in a swap, stopping in it or stuck from
+  // its start (MassSwapSystem::kSwapStopped).
+  const auto stood_still = [](const DmSwap& w) { return w.stopped || w.stuck_at_start; };
+  out.swap_stopped =
+      stood_still(out.cycle.extension.swap) || stood_still(out.cycle.contraction.swap);
   out.held = out.cycle.extension.swap.held || out.cycle.contraction.swap.held;
   const double delta = 1e-6 * scale;
   out.contraction =

@@ -74,9 +74,8 @@ struct DmStroke {
   /// y was driven backward: it slid back with F > μMg (accelerating backward), regime II in the
   /// sense of §2.3.1. (Sliding back from c0 < 0 with F < μMg only decelerates it to rest.)
   bool large_driven_back = false;
-  /// y came to rest and then slid back: what MassSwapSystem flags as regime II
-  /// (kLargeMassSlidBack). Misses a y driven back from the start (c0 < 0 with F > μMg, or
-  /// c0 = 0 with F > μ_s M g), where no stop precedes the sliding.
+  /// y came to rest and then slid back (the §2.4 picture of regime II; a y driven back from the
+  /// start, c0 < 0 with F > μMg or c0 = 0 with F > μ_s M g, has no stop first).
   bool large_stopped_then_slid_back = false;
 };
 
@@ -122,12 +121,8 @@ struct DmCycle {
 
 [[nodiscard]] DmCycle dm_cycle_map(const Params& p, double c0);
 
-/// Regime of one stroke as MassSwapSystem classifies it: II iff y came to rest and slid back.
-[[nodiscard]] inline Regime simulation_regime(const DmStroke& s) {
-  return s.large_stopped_then_slid_back ? Regime::kTwo : Regime::kOne;
-}
-
-/// Regime of one stroke by its motion: II iff y was driven backward (two masses moving).
+/// Regime of one stroke by its motion: II iff y was driven backward (two masses moving); what
+/// MassSwapSystem::mode_flags reports as kLargeMassSlidBack.
 [[nodiscard]] inline Regime stroke_regime(const DmStroke& s) {
   return s.large_driven_back ? Regime::kTwo : Regime::kOne;
 }
@@ -138,8 +133,8 @@ struct DmSteadyState {
   double period = 0.0;         ///< s, half the cycle duration (as SimulationSummary::period)
   double c0 = 0.0;             ///< m/s, common velocity at the start of an extension stroke
   double c_contraction = 0.0;  ///< m/s, common velocity at the start of a contraction stroke
-  /// Regime of the contraction stroke as steady_state_by_simulation reports it (simulation_regime
-  /// of the second half cycle).
+  /// Regime of the contraction stroke, as steady_state_by_simulation reports it (its second half
+  /// cycle).
   Regime regime = Regime::kOne;
   Regime regime_extension = Regime::kOne;    ///< stroke_regime of the extension stroke
   Regime regime_contraction = Regime::kOne;  ///< stroke_regime of the contraction stroke

@@ -67,19 +67,19 @@ struct HalfCycleRecord {
   double duration;
   double displacement;  ///< CoM displacement, the swap included
   double c_start;       ///< CoM velocity at the start
-  unsigned flags;       ///< System::event_flags of its events, or-ed
+  unsigned flags;       ///< System::mode_flags of the modes it went through, or-ed
 };
 
 /// The inchworm systems: hybrid systems with a half-cycle event, a rest state, a CoM.
 template <class S>
 concept InchwormSystem = events::PiecewiseConstantAccelerationSystem<S> &&
-    requires(const S& sys, const typename S::StateType& x, const events::Event<S>& ev) {
+    requires(const S& sys, const typename S::StateType& x, typename S::Mode mode) {
   { S::kHalfCycleEnd } -> std::convertible_to<int>;
   { sys.rest_state() } -> std::same_as<typename S::StateType>;
   { sys.initial_mode(x) } -> std::same_as<typename S::Mode>;
   { sys.com(x) } -> std::convertible_to<double>;
   { sys.com_velocity(x) } -> std::convertible_to<double>;
-  { S::event_flags(ev) } -> std::convertible_to<unsigned>;
+  { sys.mode_flags(mode) } -> std::convertible_to<unsigned>;
 };
 
 /// Integrates one half cycle from (mode, x) at t = 0 until its closing event and reset, then
@@ -87,18 +87,18 @@ concept InchwormSystem = events::PiecewiseConstantAccelerationSystem<S> &&
 template <InchwormSystem System, class Backend>
 HalfCycleRecord simulate_half_cycle(const System& sys, Backend& backend,
                                     typename System::Mode& mode, typename System::StateType& x) {
-  HalfCycleRecord rec{0.0, 0.0, sys.com_velocity(x), 0U};
+  HalfCycleRecord rec{0.0, 0.0, sys.com_velocity(x), sys.mode_flags(mode)};
   const double c_before = sys.com(x);
   double t = 0.0;
   events::RunLimits limits;
   limits.max_events = 64;  // a half cycle has at most 5 events; more means a Zeno loop
   bool ended = false;
   const auto summary = events::run_hybrid(sys, backend, t, mode, x, limits, [&](const auto& ev) {
-    rec.flags |= System::event_flags(ev);
     if (ev.guard_id == System::kHalfCycleEnd) {
-      ended = true;
+      ended = true;  // the mode after it starts the next half cycle
       return false;
     }
+    rec.flags |= sys.mode_flags(ev.mode_after);
     return true;
   });
   if (!ended) {
