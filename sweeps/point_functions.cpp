@@ -139,8 +139,9 @@ void force_range(const Reader& r, InchwormInputs& in) {
 }
 
 /// Params, the force and the method of an inchworm point; throws InputError naming the key.
-InchwormInputs read_inchworm(const Reader& r, bool solver_keys) {
+InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& base = {}) {
   InchwormInputs in;
+  in.p = base;
   Params& p = in.p;
   p.m = r.number("m", p.m);
   p.M = r.number("M", p.M);
@@ -191,7 +192,8 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys) {
   try {
     inchworm::validate(p);
   } catch (const InputError& e) {
-    static const std::array<std::pair<std::string_view, std::string_view>, 7> kOptionKey{{
+    static const std::array<std::pair<std::string_view, std::string_view>, 8> kOptionKey{{
+        {"--alpha", "alpha"},
         {"--m", "m"},
         {"--M", "M"},
         {"--L-min", "L_min"},
@@ -253,8 +255,33 @@ double f_frac_of(const InchwormInputs& in) {
 
 // --- inchworm_vss -------------------------------------------------------------------------------
 
-const std::vector<std::string_view> kVssKeys = keys(
-    {kParamKeys, kForceKeys, {"method", "rtol", "stop", "estimator", "max_strokes", "repeats"}});
+const std::vector<std::string_view> kVssKeys =
+    keys({kParamKeys,
+          kForceKeys,
+          {"model", "alpha", "method", "rtol", "stop", "estimator", "max_strokes", "repeats"}});
+
+/// The swap model of a point (`model`: "instant" | "dm") and the dm model's `alpha`, set
+/// before the other parameters are validated.
+void read_model(const Reader& r, Params& p) {
+  if (const auto model = r.text("model")) {
+    if (*model == "instant") {
+      p.model = inchworm::SwapModel::kInstant;
+    } else if (*model == "dm") {
+      p.model = inchworm::SwapModel::kMass;
+    } else {
+      r.fail("model", "expected \"instant\" or \"dm\", got '" + *model + "'");
+    }
+  }
+  if (const auto alpha = r.number("alpha")) {
+    if (p.model != inchworm::SwapModel::kMass) {
+      r.fail("alpha", "only used with model = \"dm\" (the instant swap has no swap force)");
+    }
+    if (!(*alpha > 0.0)) {
+      r.fail("alpha", "the swap force factor must be positive, got " + core::format_double(*alpha));
+    }
+    p.alpha = *alpha;
+  }
+}
 
 struct VssInputs {
   InchwormInputs in;
@@ -263,7 +290,9 @@ struct VssInputs {
 
 VssInputs read_vss(const Point& point) {
   const Reader r(point, "inchworm_vss", kVssKeys);
-  VssInputs v{read_inchworm(r, true), 1};
+  Params base;
+  read_model(r, base);
+  VssInputs v{read_inchworm(r, true, base), 1};
   v.repeats = r.integer("repeats", 1, 1, 1000);
   return v;
 }
@@ -309,7 +338,10 @@ PointResult run_vss(const Point& point) {
       s.stats.steps,
       s.stats.rhs_evals,
       s.wall_s,
-      s.message};
+      s.message,
+      std::string(in.p.model == inchworm::SwapModel::kMass ? "dm" : "instant"),
+      in.p.model == inchworm::SwapModel::kMass ? in.p.alpha : nan,
+      static_cast<long long>(s.swap_stopped ? 1 : 0)};
   PointResult out;
   out.rows.push_back(std::move(row));
   out.failed = !s.converged;
@@ -384,13 +416,15 @@ PointResult run_convergence(const Point& point) {
 const std::vector<PointFunction>& registry() {
   static const std::vector<PointFunction> functions = {
       {"inchworm_vss",
-       "steady-state CoM speed of the instant-swap inchworm by any method (one row per point)",
-       {"id",          "mu",        "mu_s",      "F",
-        "f_tilde",     "F_frac",    "method",    "rtol",
-        "stop",        "estimator", "v_ss",      "period",
-        "c0",          "regime",    "est_error", "last_difference",
-        "contraction", "strokes",   "converged", "steps",
-        "rhs_evals",   "wall_s",    "message"},
+       "steady-state CoM speed of the inchworm (instant swap or moving dm) by any method (one row "
+       "per point)",
+       {"id",          "mu",          "mu_s",      "F",
+        "f_tilde",     "F_frac",      "method",    "rtol",
+        "stop",        "estimator",   "v_ss",      "period",
+        "c0",          "regime",      "est_error", "last_difference",
+        "contraction", "strokes",     "converged", "steps",
+        "rhs_evals",   "wall_s",      "message",   "model",
+        "alpha",       "swap_stopped"},
        [](const Point& p) { (void)read_vss(p); },
        run_vss},
       {"inchworm_convergence",

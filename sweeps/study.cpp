@@ -65,6 +65,7 @@ TraceJob parse_trace(const toml::table& t, const std::string& path) {
   std::map<std::string, std::string> where;  // key -> file:line:col
   bool has_force = false;
   bool has_mu = false;
+  bool has_alpha = false;
   for (auto&& [k, v] : t) {
     const std::string key(k.str());
     where[key] = origin_of(v.source(), path);
@@ -105,6 +106,19 @@ TraceJob parse_trace(const toml::table& t, const std::string& path) {
       if (!(job.options.rtol > 0.0 && job.options.rtol < 1.0)) {
         throw InputError(where[key], "rtol: must be in (0, 1)");
       }
+    } else if (key == "model") {
+      const std::string name = text(v, key, path);
+      if (name == "instant") {
+        job.params.model = inchworm::SwapModel::kInstant;
+      } else if (name == "dm") {
+        job.params.model = inchworm::SwapModel::kMass;
+      } else {
+        throw InputError(where[key],
+                         "model: unknown model '" + name + "'; expected \"instant\" or \"dm\"");
+      }
+    } else if (key == "alpha") {
+      job.params.alpha = number(v, key, path);
+      has_alpha = true;
     } else if (key == "method") {
       const std::string name = text(v, key, path);
       const auto m = inchworm::parse_method(name);
@@ -117,7 +131,7 @@ TraceJob parse_trace(const toml::table& t, const std::string& path) {
       throw InputError(origin_of(k.source(), path),
                        "unknown key '" + key +
                            "' in [[trace]]; expected name, F, mu, mu_s, m, M, L_min, L_max, g, "
-                           "cycles, dt, method, rtol");
+                           "model, alpha, cycles, dt, method, rtol");
     }
   }
   if (job.name.empty() || !has_force || !has_mu) {
@@ -130,10 +144,15 @@ TraceJob parse_trace(const toml::table& t, const std::string& path) {
   if (!plain) {
     throw InputError(where["name"], "name: '" + job.name + "' is not a plain file name");
   }
+  if (has_alpha && job.params.model != inchworm::SwapModel::kMass) {
+    throw InputError(where["alpha"],
+                     "alpha: only used with model = \"dm\" (the instant swap has no swap force)");
+  }
   try {
     inchworm::validate(job.params);
   } catch (const InputError& e) {
-    static const std::array<std::pair<std::string_view, const char*>, 8> kOptionKey{{
+    static const std::array<std::pair<std::string_view, const char*>, 9> kOptionKey{{
+        {"--alpha", "alpha"},
         {"--m", "m"},
         {"--M", "M"},
         {"--L-min", "L_min"},
@@ -251,7 +270,10 @@ std::filesystem::path write_trace_job(const Study& study, const TraceJob& job,
         {"g", p.g},
         {"mu", p.mu},
         {"mu_s", p.static_mu()},
-        {"F", p.F}}},
+        {"F", p.F},
+        {"model", p.model == inchworm::SwapModel::kMass ? "dm" : "instant"},
+        {"alpha", p.model == inchworm::SwapModel::kMass ? nlohmann::json(p.alpha)
+                                                        : nlohmann::json(nullptr)}}},
       {"method", inchworm::method_name(job.method)},
       {"cycles", job.options.cycles},
       {"dt", job.options.sample_dt},

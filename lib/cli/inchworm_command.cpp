@@ -58,6 +58,8 @@ long long parse_integer(const std::string& option, const std::string& text) {
 /// The model's options, shared by vss and trace; kept as text and parsed by hand.
 struct ParamOptions {
   std::string force, mu, mu_s, m, M, L_min, L_max, g;
+  std::string model = "instant";
+  std::string alpha;
 
   void add(CLI::App& app) {
     app.add_option("--force", force, "actuator force F in N (> mu_s m g)")
@@ -75,6 +77,13 @@ struct ParamOptions {
     app.add_option("--L-max", L_max, "longest actuator length in m (default 0.5)")
         ->type_name("NUMBER");
     app.add_option("--g", g, "gravitational acceleration in m/s^2 (default 9.81)")
+        ->type_name("NUMBER");
+    app.add_option("--model", model,
+                   "instant (instantaneous swap, thesis 2.2; default) | dm (the load dm = M - m "
+                   "pushed across by alpha F, thesis 2.5)")
+        ->type_name("NAME");
+    app.add_option("--alpha", alpha,
+                   "dm model: the swap force F_dm = alpha F, alpha > 0 (default 1)")
         ->type_name("NUMBER");
   }
 
@@ -101,10 +110,33 @@ struct ParamOptions {
     if (given("--g")) {
       p.g = parse_number("--g", g);
     }
+    if (model == "instant") {
+      p.model = inchworm::SwapModel::kInstant;
+      if (given("--alpha")) {
+        throw InputError("--alpha",
+                         "only used with --model dm (the instant swap has no swap force)");
+      }
+    } else if (model == "dm") {
+      p.model = inchworm::SwapModel::kMass;
+      if (given("--alpha")) {
+        p.alpha = parse_number("--alpha", alpha);
+      }
+    } else {
+      throw InputError("--model", "unknown model '" + model + "'; expected instant|dm");
+    }
     inchworm::validate(p);
     return p;
   }
 };
+
+const char* model_name(const inchworm::Params& p) {
+  return p.model == inchworm::SwapModel::kMass ? "dm" : "instant";
+}
+
+/// alpha in the JSON output: the dm model's factor; null for the instant model (it has none).
+nlohmann::json alpha_value(const inchworm::Params& p) {
+  return p.model == inchworm::SwapModel::kMass ? nlohmann::json(p.alpha) : nlohmann::json(nullptr);
+}
 
 inchworm::Method parse_method(const std::string& name) {
   const auto m = inchworm::parse_method(name);
@@ -173,6 +205,9 @@ struct VssCommand {
           {"F", p.F},
           {"mu", p.mu},
           {"mu_s", p.static_mu()},
+          {"model", model_name(p)},
+          {"alpha", alpha_value(p)},
+          {"swap_stopped", r.swap_stopped},
           {"rtol", opt.rtol},
           {"est_error", r.est_error},
           {"last_difference", r.last_difference},
@@ -187,7 +222,7 @@ struct VssCommand {
       for (auto& [key, value] : out.items()) {
         const bool result = key == "v_ss" || key == "period" || key == "c0" ||
                             key == "contraction" || key == "est_error" ||
-                            key == "last_difference" || key == "regime";
+                            key == "last_difference" || key == "regime" || key == "swap_stopped";
         if ((nothing && result) ||
             (value.is_number_float() && !std::isfinite(value.get<double>()))) {
           value = nullptr;  // JSON has no NaN
@@ -202,10 +237,17 @@ struct VssCommand {
         return nothing ? std::string("n/a") : core::format_double(v);
       };
       line("method", inchworm::method_name(m));
+      line("model", model_name(p));
+      if (p.model == inchworm::SwapModel::kMass) {
+        line("alpha", core::format_double(p.alpha));
+      }
       line("v_ss", num(r.v_ss), " m/s");
       line("period", num(r.period), " s");
       line("c0", num(r.c0), " m/s");
       line("regime", nothing ? "n/a" : inchworm::regime_name(r.regime));
+      if (p.model == inchworm::SwapModel::kMass) {
+        line("swap_stopped", nothing ? "n/a" : (r.swap_stopped ? "yes" : "no"));
+      }
       line("contraction", num(r.contraction), " per cycle");
       if (simulated) {
         line("est_error", num(r.est_error), " (relative)");

@@ -102,6 +102,67 @@ TEST(CliInchworm, VssNotConvergedPrintsResultAndExits1) {
   EXPECT_NE(r.err.find("no convergence"), std::string::npos);
 }
 
+TEST(CliInchworm, VssJsonNamesTheModel) {
+  const CommandResult r = run_slipwalk({"inchworm", "vss", "--force", "45", "--mu", "1", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("model"), "instant");
+  EXPECT_TRUE(j.at("alpha").is_null());  // the instant model has no swap force
+  EXPECT_EQ(j.at("swap_stopped"), false);
+  // --model instant is the default, spelled out
+  const CommandResult same = run_slipwalk(
+      {"inchworm", "vss", "--force", "45", "--mu", "1", "--model", "instant", "--json"});
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  EXPECT_EQ(nlohmann::json::parse(same.out).at("v_ss"), j.at("v_ss"));
+}
+
+// The dm model of §2.5 at the conditions of Fig. 2.6 (mu = 1): with alpha = 1 the m-m body
+// stops and sticks during the swap (alpha F <= mu g (2m + dm) = 24.525 N at F = 12 and 20 N);
+// with alpha = 5 it is pushed out of its friction cone and never sticks.
+TEST(CliInchworm, VssDmModel) {
+  struct Case {
+    std::string force, alpha;
+    bool stopped;
+    std::string regime;
+  };
+  for (const Case& c : std::vector<Case>{{"12", "1", true, "I"},
+                                         {"20", "1", true, "II"},
+                                         {"12", "5", false, "I"},
+                                         {"20", "5", false, "II"}}) {
+    const CommandResult r =
+        run_slipwalk({"inchworm", "vss", "--force", c.force, "--mu", "1", "--model", "dm",
+                      "--alpha", c.alpha, "--method", "analytic", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << c.force << " " << c.alpha << "\n" << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j.at("model"), "dm");
+    EXPECT_EQ(j.at("alpha").get<double>(), std::stod(c.alpha));
+    EXPECT_EQ(j.at("swap_stopped"), c.stopped) << c.force << " " << c.alpha;
+    EXPECT_EQ(j.at("regime"), c.regime) << c.force << " " << c.alpha;
+    EXPECT_EQ(j.at("converged"), true);
+    EXPECT_GT(j.at("v_ss").get<double>(), 0.0);
+  }
+  // alpha defaults to 1
+  const CommandResult d = run_slipwalk({"inchworm", "vss", "--force", "12", "--mu", "1", "--model",
+                                        "dm", "--method", "analytic", "--json"});
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_EQ(nlohmann::json::parse(d.out).at("alpha").get<double>(), 1.0);
+  // the moving load is slower than the instant swap at the same force
+  const auto dm = nlohmann::json::parse(d.out);
+  const auto instant = nlohmann::json::parse(
+      run_slipwalk({"inchworm", "vss", "--force", "12", "--mu", "1", "--json"}).out);
+  EXPECT_NE(dm.at("v_ss").get<double>(), instant.at("v_ss").get<double>());
+}
+
+TEST(CliInchworm, VssDmHumanReadable) {
+  const CommandResult r = run_slipwalk({"inchworm", "vss", "--force", "12", "--mu", "1", "--model",
+                                        "dm", "--alpha", "1", "--method", "analytic"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"model", "alpha", "swap_stopped"}) {
+    EXPECT_NE(r.out.find(key), std::string::npos) << key;
+  }
+  EXPECT_NE(r.out.find("dm"), std::string::npos);
+}
+
 struct BadInput {
   std::vector<std::string> args;  ///< after `inchworm vss|trace`
   std::string option;             ///< must appear in the message
@@ -134,6 +195,17 @@ std::vector<BadInput> bad_model_inputs() {
       {concat(kModel, {"--rtol", "0"}), "--rtol"},
       {concat(kModel, {"--rtol", "1"}), "--rtol"},
       {concat(kModel, {"--rtol", "x"}), "--rtol"},
+      // the swap model and its force factor
+      {concat(kModel, {"--model", "slow"}), "--model", "slow"},
+      {concat(kModel, {"--alpha", "5"}), "--alpha"},  // alpha with the instant model
+      {concat(kModel, {"--model", "instant", "--alpha", "5"}), "--alpha"},
+      {concat(kModel, {"--model", "dm", "--alpha", "0"}), "--alpha"},
+      {concat(kModel, {"--model", "dm", "--alpha", "-1"}), "--alpha"},
+      {concat(kModel, {"--model", "dm", "--alpha", "abc"}), "--alpha", "abc"},
+      {concat(kModel, {"--model", "dm", "--alpha", "nan"}), "--alpha", "nan"},
+      {concat(kModel, {"--model", "dm", "--alpha", "inf"}), "--alpha", "inf"},
+      {concat(kModel, {"--model", "dm", "--alpha", ""}), "--alpha"},
+      {{"--force", "5", "--mu", "1", "--model", "dm", "--alpha", "2"}, "--force"},
   };
 }
 
@@ -178,6 +250,19 @@ TEST(CliInchworm, TraceWritesCsv) {
                                         "--cycles", "2", "--dt", "0.01", "--out", "-"});
   ASSERT_EQ(s.exit_code, 0) << s.err;
   EXPECT_EQ(s.out, text);
+}
+
+TEST(CliInchworm, TraceDmModel) {
+  const CommandResult r =
+      run_slipwalk({"inchworm", "trace", "--force", "12", "--mu", "1", "--model", "dm", "--alpha",
+                    "5", "--cycles", "2", "--dt", "0.01", "--out", "-"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("t,x,y,z,com,", 0), 0U);
+  EXPECT_NE(r.out.find("arrival_after"), std::string::npos);  // Delta m moved across
+  const CommandResult instant = run_slipwalk({"inchworm", "trace", "--force", "12", "--mu", "1",
+                                              "--cycles", "2", "--dt", "0.01", "--out", "-"});
+  ASSERT_EQ(instant.exit_code, 0) << instant.err;
+  EXPECT_EQ(instant.out.find("arrival_after"), std::string::npos);
 }
 
 TEST(CliInchworm, TraceRejectsBadInputAndWritesNothing) {

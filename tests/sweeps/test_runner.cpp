@@ -12,6 +12,7 @@
 #include "inchworm/simulate.hpp"
 #include "sweeps/runner.hpp"
 #include "sweeps/spec.hpp"
+#include "sweeps/study.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -94,6 +95,7 @@ TEST(Runner, SameBytesWithOneOrTwoThreads) {
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line.rfind("id,mu,mu_s,F,f_tilde,F_frac,method,", 0), 0U);
+  EXPECT_NE(line.find(",wall_s,message,model,alpha,swap_stopped"), std::string::npos) << line;
   for (long long id = 0; std::getline(in, line); ++id) {
     EXPECT_EQ(line.rfind(std::to_string(id) + ",", 0), 0U);
   }
@@ -385,6 +387,59 @@ dt = 0.01
   EXPECT_EQ(bad_trace.exit_code, 2);
   EXPECT_NE(bad_trace.err.find("study.toml:4:"), std::string::npos) << bad_trace.err;
   EXPECT_FALSE(std::filesystem::exists(data));
+}
+
+TEST(Study, TracesTakeTheSwapModel) {
+  const ScratchDir d;
+  write_text(d / "study.toml", R"(title = "dm"
+[[trace]]
+name = "instant"
+F = 12.0
+mu = 1.0
+[[trace]]
+name = "dm5"
+F = 12.0
+mu = 1.0
+model = "dm"
+alpha = 5.0
+cycles = 2
+dt = 0.01
+)");
+  const Study study = load_study(d.path());
+  ASSERT_EQ(study.traces.size(), 2U);
+  EXPECT_EQ(study.traces[0].params.model, inchworm::SwapModel::kInstant);
+  EXPECT_EQ(study.traces[1].params.model, inchworm::SwapModel::kMass);
+  EXPECT_EQ(study.traces[1].params.alpha, 5.0);
+  const auto csv = write_trace_job(study, study.traces[1], d / "data");
+  EXPECT_NE(read_text(csv).find("arrival_after"), std::string::npos);
+  const auto side = nlohmann::json::parse(read_text(d / "data" / study.id / "dm5.json"));
+  EXPECT_EQ(side.at("params").at("model"), "dm");
+  EXPECT_EQ(side.at("params").at("alpha"), 5.0);
+
+  // Bad model keys: file:line:col of the key's value.
+  struct Case {
+    std::string body, where;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"model = \"slow\"\n", ":6:9"},
+           {"alpha = 5.0\n", ":6:9"},                      // alpha with the instant model
+           {"model = \"dm\"\nalpha = 0.0\n", ":7:9"},      // alpha must be positive
+           {"model = \"dm\"\nalpha = \"one\"\n", ":7:9"},  // not a number
+       }) {
+    write_text(d / "study.toml",
+               "title = \"dm\"\n[[trace]]\nname = \"t\"\nF = 12.0\nmu = 1.0\n" + c.body);
+    try {
+      (void)load_study(d.path());
+      ADD_FAILURE() << c.body;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(e.where().find("study.toml" + c.where), std::string::npos)
+          << c.body << " -> " << e.what();
+      EXPECT_NE(
+          std::string(e.what()).find(c.body.find("alpha") != std::string::npos ? "alpha" : "model"),
+          std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 }  // namespace

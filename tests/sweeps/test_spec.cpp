@@ -2,6 +2,7 @@
 // and bad specs rejected with file:line:col before anything runs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -311,6 +312,99 @@ F_frac = [0.0, 1.0]
   EXPECT_NEAR(cell(last, 4), 5.0, 1e-13);
 }
 
+/// The column of `name` in the inchworm_vss output.
+std::size_t column(const PreparedSweep& p, const std::string& name) {
+  const auto& cols = p.function->columns;
+  const auto it = std::find(cols.begin(), cols.end(), name);
+  EXPECT_NE(it, cols.end()) << name;
+  return static_cast<std::size_t>(it - cols.begin());
+}
+
+TEST(Spec, VssColumnsEndWithTheModel) {
+  const auto p = prepare(parse("[params]\nF = 45.0\nmu = 1.0\n"));
+  const auto& cols = p.function->columns;
+  ASSERT_GE(cols.size(), 4U);
+  // appended after the chapter 2 columns, which keep their places
+  EXPECT_EQ(cols[cols.size() - 4], "message");
+  EXPECT_EQ(cols[cols.size() - 3], "model");
+  EXPECT_EQ(cols[cols.size() - 2], "alpha");
+  EXPECT_EQ(cols[cols.size() - 1], "swap_stopped");
+  EXPECT_EQ(cols[0], "id");
+  EXPECT_EQ(cols[13], "regime");
+}
+
+TEST(Spec, ModelAndAlpha) {
+  const auto p = prepare(parse(R"(
+[params]
+mu = 1.0
+method = "analytic"
+[[points]]
+F = 12.0
+[[points]]
+F = 12.0
+model = "dm"
+alpha = 1.0
+[[points]]
+F = 20.0
+model = "dm"
+alpha = 5.0
+)"));
+  ASSERT_EQ(p.points.size(), 3U);
+  const std::size_t model = column(p, "model");
+  const std::size_t alpha = column(p, "alpha");
+  const std::size_t stopped = column(p, "swap_stopped");
+  const std::size_t converged = column(p, "converged");
+  const std::size_t regime = column(p, "regime");
+  const PointResult instant = p.function->run(p.points[0]);
+  const PointResult slow = p.function->run(p.points[1]);
+  const PointResult fast = p.function->run(p.points[2]);
+  EXPECT_EQ(std::get<std::string>(instant.rows[0][model]), "instant");
+  EXPECT_TRUE(std::isnan(std::get<double>(instant.rows[0][alpha])));
+  EXPECT_EQ(std::get<long long>(instant.rows[0][stopped]), 0);
+  // alpha F = 12 N <= mu g (2m + dm) = 24.5 N: the m-m body stops and sticks during the swap
+  EXPECT_EQ(std::get<std::string>(slow.rows[0][model]), "dm");
+  EXPECT_EQ(std::get<double>(slow.rows[0][alpha]), 1.0);
+  EXPECT_EQ(std::get<long long>(slow.rows[0][converged]), 1);
+  EXPECT_EQ(std::get<long long>(slow.rows[0][stopped]), 1);
+  EXPECT_EQ(std::get<long long>(slow.rows[0][regime]), 1);
+  // alpha F = 100 N: pushed out of the friction cone, never stuck; F > mu M g: regime II
+  EXPECT_EQ(std::get<double>(fast.rows[0][alpha]), 5.0);
+  EXPECT_EQ(std::get<long long>(fast.rows[0][converged]), 1);
+  EXPECT_EQ(std::get<long long>(fast.rows[0][stopped]), 0);
+  EXPECT_EQ(std::get<long long>(fast.rows[0][regime]), 2);
+}
+
+TEST(Spec, ModelAndAlphaRejected) {
+  struct Case {
+    std::string body, key, where;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"[params]\nF = 45.0\nmu = 1.0\nmodel = \"slow\"\n", "model", "spec.toml:7:9"},
+           {"[params]\nF = 45.0\nmu = 1.0\nmodel = 1.0\n", "model", "spec.toml:7:9"},
+           {"[params]\nF = 45.0\nmu = 1.0\nalpha = 5.0\n", "alpha", "spec.toml:7:9"},
+           {"[params]\nF = 45.0\nmu = 1.0\nmodel = \"instant\"\nalpha = 5.0\n", "alpha",
+            "spec.toml:8:9"},
+           {"[params]\nF = 45.0\nmu = 1.0\nmodel = \"dm\"\n[axes]\nalpha = [1.0, 0.0]\n", "alpha",
+            "spec.toml:9:15"},
+           {"[params]\nF = 45.0\nmu = 1.0\nmodel = \"dm\"\nalpha = -2.0\n", "alpha",
+            "spec.toml:8:9"},
+           {"[params]\nF = 45.0\nmu = 1.0\nmodel = \"dm\"\nalpha = \"big\"\n", "alpha",
+            "spec.toml:8:9"},
+       }) {
+    const std::string message = message_of([&] { (void)prepare(parse(c.body)); });
+    EXPECT_EQ(message.rfind(c.where, 0), 0U) << c.body << " -> " << message;
+    EXPECT_NE(message.find(c.key), std::string::npos) << c.body << " -> " << message;
+    EXPECT_NE(message.find("point"), std::string::npos) << c.body << " -> " << message;
+  }
+  // the convergence kind is the instant model's only
+  const std::string head = "study = \"a\"\nname = \"b\"\nkind = \"inchworm_convergence\"\n";
+  EXPECT_NE(where_of([&] {
+              (void)prepare(parse_spec(
+                  head + "[params]\nF = 45.0\nmu = 1.0\ncycles = 10\nmodel = \"dm\"\n", "s"));
+            }),
+            "");
+}
+
 /// Every study spec in the repository loads and checks, full and quick.
 TEST(Spec, StudySpecsLoad) {
   const std::filesystem::path dir = std::filesystem::path(SLIPWALK_SOURCE_DIR) / "studies";
@@ -328,7 +422,7 @@ TEST(Spec, StudySpecsLoad) {
       }
     }
   }
-  EXPECT_GE(specs, 7);
+  EXPECT_GE(specs, 9);
   const auto count = [&](const char* name) {
     return point_count(load_spec(dir / "ch2_inchworm" / name));
   };
@@ -340,6 +434,15 @@ TEST(Spec, StudySpecsLoad) {
   EXPECT_EQ(count("hard_cases.toml"), 8U * 6U);
   EXPECT_EQ(count("cost.toml"), 2U * 4U * 7U + 2U * 2U);
   EXPECT_EQ(count("convergence.toml"), 2U);
+  // §2.5: per mu, regime I (12 F) and regime II (30 F) x alpha 1, 5, 10 x analytic, exact; the
+  // instant swap by its closed form on the same forces; the regime maps 40 F x 40 alpha x 2.
+  const auto dm = [&](const char* name, bool quick) {
+    return point_count(load_spec(dir / "ch2_dm_swap" / name, quick));
+  };
+  EXPECT_EQ(dm("fig2_7.toml", false), 3U * (12U + 30U) * 3U * 2U + 3U * (12U + 30U));
+  EXPECT_EQ(dm("fig2_7.toml", true), 3U * (3U + 3U) * 3U * 2U + 3U * (3U + 3U));
+  EXPECT_EQ(dm("regime_map.toml", false), 3U * 40U * 40U * 2U);
+  EXPECT_EQ(dm("regime_map.toml", true), 3U * 5U * 6U * 2U);
 }
 
 }  // namespace
