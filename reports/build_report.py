@@ -29,7 +29,34 @@ sys.path.insert(0, str(HERE))
 import common as c  # noqa: E402
 
 SCRIPTS = ["fig2_2", "fig2_3", "regression", "eq2_6", "scaling", "separation", "performance",
-           "stability"]
+           "stability", "fig2_6", "fig2_7", "regime_map"]
+# The data folder (under --data) each script reads; c.STUDY unless named here. A script whose
+# folder is missing is skipped with a warning (its ledger entries become "not measured"), so a
+# data folder produced before a study existed still builds.
+SCRIPT_STUDY = {"fig2_6": "ch2_dm_swap", "fig2_7": "ch2_dm_swap", "regime_map": "ch2_dm_swap"}
+STUDIES = [c.STUDY, "ch2_dm_swap"]
+# What the thesis leaves open in the dm model (lib/inchworm/mass_swap.hpp), stated on the page.
+DM_CHOICES = [
+    "Stroke phase: Δm rides locked on one end mass (then \"M\", y); the stroke is exactly the "
+    "instant-swap stroke (eqs. 2.1–2.2) and ends in a plastic collision of x with y + Δm at the "
+    "length limit (eq. 2.4).",
+    "Swap phase: the end masses move as one body of mass 2m at fixed distance; Δm is pushed from y "
+    "toward x by F_Δm = αF and the body feels −F_Δm; friction acts on the body with the whole "
+    "normal load (2m + Δm)g (Δm rides on the mechanism, not on the ground). When Δm arrives, a "
+    "plastic collision gives all three one velocity and Δm's new carrier becomes y.",
+    "Δm starts the swap at the end mass it rode on, with that mass's velocity (after the stroke's "
+    "collision: the common velocity).",
+    "The body's static friction uses μ_s like the end masses (μ_s = μ here): it is stuck while at "
+    "rest and |F_Δm| ≤ μ_s g(2m + Δm); a body pushed out of its friction cone slides (backward "
+    "after an extension stroke, forward after a contraction stroke) with dynamic friction, and "
+    "stops and sticks again when its velocity reaches zero.",
+    "Δm moves on a rail between the end masses: if its free motion would press it into the end it "
+    "just left, it is held there and the three slide together until the body stops (\"held\" "
+    "mode). That happens after a contraction stroke when αF < μgΔm, i.e. only for α < Δm/m = 0.5 "
+    "with the thesis' masses.",
+    "A cell or point counts as \"stop during swap\" when the body stopped and stuck in either "
+    "swap of the limit cycle (in practice the swap after the extension stroke).",
+]
 VERDICT_CLASS = {
     "reproduced": "ok",
     "differs — explained": "explained",
@@ -266,19 +293,24 @@ def claim_rows(claims: list[dict], results: dict, values: Values, short: bool) -
     return "\n".join(out)
 
 
+def csv_name(path: Path) -> str:
+    """study/file.csv"""
+    return f"{path.parent.name}/{path.name}"
+
+
 def provenance_html(data: Path, script_times: dict, quick: bool) -> str:
     rows = []
-    folder = data / c.STUDY
-    for csv_path in sorted(folder.glob("*.csv")):
+    csvs = [p for study in STUDIES for p in sorted((data / study).glob("*.csv"))]
+    for csv_path in csvs:
         side = csv_path.with_suffix(".json")
         if not side.is_file():
-            rows.append(f"<tr><td>{html.escape(csv_path.name)}</td><td colspan='5' class='bad'>"
+            rows.append(f"<tr><td>{html.escape(csv_name(csv_path))}</td><td colspan='5' class='bad'>"
                         "no sidecar</td></tr>")
             continue
         try:
             meta = json.loads(side.read_text())
         except json.JSONDecodeError as e:
-            rows.append(f"<tr><td>{html.escape(csv_path.name)}</td><td colspan='5' class='bad'>"
+            rows.append(f"<tr><td>{html.escape(csv_name(csv_path))}</td><td colspan='5' class='bad'>"
                         f"sidecar is not JSON: {html.escape(str(e))}</td></tr>")
             continue
         prov = meta.get("provenance", {}) if isinstance(meta, dict) else {}
@@ -288,7 +320,7 @@ def provenance_html(data: Path, script_times: dict, quick: bool) -> str:
         wall = meta.get("wall_s")
         spec = json.dumps(meta.get("spec", {}), indent=1)
         rows.append(
-            f"<tr><td>{html.escape(csv_path.name)}</td><td><code>{html.escape(str(prov.get('git_commit', '—')))}</code></td>"
+            f"<tr><td>{html.escape(csv_name(csv_path))}</td><td><code>{html.escape(str(prov.get('git_commit', '—')))}</code></td>"
             f"<td>{html.escape(str(prov.get('compiler', '—')))}</td><td>{html.escape(libs_s)}</td>"
             f"<td>{html.escape(str(meta.get('threads', '—')))}</td>"
             f"<td>{html.escape(fmt_value(wall) if wall is not None else '—')}</td>"
@@ -328,8 +360,10 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
     summary = " · ".join(f"{verdict_badge(k)} {n}" for k, n in sorted(counts.items()))
 
     figs = []
+    figs_25 = []
     for fg in ledger.get("figure", []):
         script = fg["script"]
+        target = figs_25 if str(fg.get("part", "")) == "2.5" else figs
         linked = [by_id[i] for i in fg.get("claims", []) if i in by_id]
         table = ""
         if fg.get("table") and (staging / fg["table"]).is_file():
@@ -337,10 +371,14 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
         mini = ("<table><thead><tr><th>claim</th><th>thesis</th><th>ours</th><th>verdict</th>"
                 "</tr></thead><tbody>" + claim_rows(linked, results, values, True) +
                 "</tbody></table>") if linked else ""
-        wide = " wide" if script in ("eq2_6",) else ""
-        figs.append(
+        wide = " wide" if script in ("eq2_6", "fig2_6", "fig2_7", "regime_map") else ""
+        image = (f"<img src='{html.escape(script)}.png' alt='{html.escape(fg.get('title', script))}'>"
+                 if (staging / f"{script}.png").is_file() else
+                 f"<p class='bad'>Not built: the data folder "
+                 f"<code>{html.escape(SCRIPT_STUDY.get(script, c.STUDY))}</code> is missing.</p>")
+        target.append(
             f"<div class='fig{wide}' id='fig-{html.escape(script)}'>"
-            f"<img src='{html.escape(script)}.png' alt='{html.escape(fg.get('title', script))}'>"
+            f"{image}"
             f"<div class='text'><h3>{html.escape(fg.get('title', script))}</h3>"
             f"<p><b>Thesis ({html.escape(fg.get('thesis', ''))}):</b> {html.escape(render(fg.get('shows', ''), values))}</p>"
             f"<blockquote>{html.escape(fg.get('quote', ''))}</blockquote>"
@@ -354,13 +392,27 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
     quick_banner = ("<div class='quick'>Quick run: fewer sweep points than the full study; fits "
                     "and verdicts may differ from a full run.</div>") if quick else ""
     ledger_rows = claim_rows(claims, results, values, False)
+    f27, rmap = v.get("fig2_7", {}), v.get("regime_map", {})
+    if f27.get("analytic_vs_exact_max_rel_diff") is not None:
+        dm_check = (f"Simulation against the closed form: largest relative difference of v_ss "
+                    f"{fmt_value(f27['analytic_vs_exact_max_rel_diff'])} over "
+                    f"{f27.get('analytic_vs_exact_pairs')} Fig. 2.7 points and "
+                    f"{fmt_value(rmap.get('exact_vs_analytic_max_rel_diff'))} over "
+                    f"{rmap.get('exact_cells')} regime-map cells; the same regime in "
+                    f"{fmt_value(rmap.get('exact_class_agreement'), '.1%')} of the cells.")
+    elif f27:
+        dm_check = ("The dm closed form gave no result in this build ("
+                    f"{html.escape(str(f27.get('dm_exact_unavailable_reason', 'no exact rows')))}"
+                    "); only the simulation is shown.")
+    else:
+        dm_check = ""
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
 <title>slipwalk — thesis reproduction report{' (quick run)' if quick else ''}</title>
 <style>{CSS}</style></head><body>
 <header><h1>slipwalk — reproducing <i>Efficient Modeling of Multi-legged Locomotion with Slipping</i>{' — quick run' if quick else ''}</h1>
-<div class="sub">Chapter 2: the inchworm crawling model (§2.1–2.4). Every figure from data, every number from a run; verdicts computed from the claims ledger <code>data/thesis/claims.toml</code>.</div></header>
-<nav><a href="#ch2">Chapter 2</a><a href="#ledger">Claims ledger</a><a href="#performance">Performance</a><a href="#stability">Stability</a><a href="#provenance">Provenance</a></nav>
+<div class="sub">Chapter 2: the inchworm crawling model (§2.1–2.5). Every figure from data, every number from a run; verdicts computed from the claims ledger <code>data/thesis/claims.toml</code>.</div></header>
+<nav><a href="#ch2">Chapter 2</a><a href="#ch2-5">§2.5 realistic swap</a><a href="#ledger">Claims ledger</a><a href="#performance">Performance</a><a href="#stability">Stability</a><a href="#provenance">Provenance</a></nav>
 <main>
 {quick_banner}
 <section id="ch2"><h2>Chapter 2 — inchworm crawling model</h2>
@@ -373,11 +425,22 @@ corrected); simulations are event-driven and exact between events unless a metho
 otherwise. Nondimensional speeds use ṽ = v/√(L_max g){f' (√(L_max g) = {scale:.4f} m/s)' if scale else ''} — the only reading of the
 thesis' "√(Lg)" that reproduces its own numbers (ledger entry
 <a href="#claim-2.3.1.1-velocity-unit">2.3.1.1-velocity-unit</a>); √(2 g L_max) does not.</p>
-<p>Verdicts: {summary}</p>
+<p>Verdicts (all of chapter 2): {summary}</p>
 {''.join(figs)}
 </section>
+<section id="ch2-5"><h2>§2.5 — realistic swapping: Δm pushed across by F_Δm = αF</h2>
+<p>The load Δm = M − m = {c.M - c.m:g} kg is no longer teleported: after each stroke an internal
+force F_Δm = αF pushes it from the end mass carrying it to the other one while the two end masses
+(m each) are held at constant distance as one body, the "m–m system"; Δm arrives in a plastic
+collision. Same parameters as §2.3 (μ_s = μ). Both the event-driven simulation ("analytic") and
+an independent closed-form route ("exact": the fixed point of the cycle map, where it is
+available in the build) are computed; the figures plot the simulation. {dm_check}</p>
+<p><b>Choices where the thesis is silent</b> (from <code>lib/inchworm/mass_swap.hpp</code>):</p>
+<ul class="small">{''.join(f"<li>{html.escape(x)}</li>" for x in DM_CHOICES)}</ul>
+{''.join(figs_25) or "<p>No §2.5 figures in the ledger.</p>"}
+</section>
 <section id="ledger"><h2>Claims ledger</h2>
-<p class="small">Every quantitative statement of chapter 2, §2.1–2.4 (§2.5 is not covered yet). "ours" is
+<p class="small">Every quantitative statement of chapter 2, §2.1–2.5. "ours" is
 computed by the scripts from the data; the verdict is computed from the rule in the criterion column.</p>
 <table class="data"><thead><tr><th>id</th><th>where</th><th>statement</th><th>thesis</th><th>ours</th><th>verdict</th><th>criterion, explanation, notes</th></tr></thead><tbody>
 {ledger_rows}
@@ -424,9 +487,17 @@ def main() -> int:
     try:
         times = {}
         failed = []
+        runnable = []
+        for name in SCRIPTS:
+            folder = args.data / SCRIPT_STUDY.get(name, c.STUDY)
+            if folder.is_dir():
+                runnable.append(name)
+            else:
+                print(f"build_report.py: warning: {folder}: data folder missing, {name}.py "
+                      f"skipped (run `slipwalk reproduce {folder.name}`)", file=sys.stderr)
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
             for name, rc, output, dt in pool.map(lambda s: run_script(s, args.data, staging, args.claims.resolve()),
-                                                 SCRIPTS):
+                                                 runnable):
                 times[name] = dt
                 if rc != 0:
                     failed.append((name, rc, output))
