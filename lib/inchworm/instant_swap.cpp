@@ -7,41 +7,12 @@
 
 namespace slipwalk::inchworm {
 
-InstantSwapSystem::InstantSwapSystem(const Params& p) : p_(p) {
-  const double fm = p.mu * p.m * p.g;  // dynamic friction magnitude on m
-  const double fM = p.mu * p.M * p.g;  // on M
-  // Differences are formed before dividing so that F close to μmg keeps its digits (Sterbenz).
-  accel_m_[0] = (p.F + fm) / p.m;
-  accel_m_[1] = 0.0;
-  accel_m_[2] = (p.F - fm) / p.m;
-  accel_M_[0] = -(p.F - fM) / p.M;
-  accel_M_[1] = 0.0;
-  accel_M_[2] = -(p.F + fM) / p.M;
-  rest_m_ = p.F > p.static_mu() * p.m * p.g ? 1 : 0;
-  rest_M_ = p.F > p.static_mu() * p.M * p.g ? -1 : 0;
-}
+InstantSwapSystem::InstantSwapSystem(const Params& p) : p_(p), stroke_(p) {}
 
 events::ModeFlow<2, 3> InstantSwapSystem::flow(Mode mode) const {
   events::ModeFlow<2, 3> f;
-  f.accel << accel_m_[mode.slide_m + 1], accel_M_[mode.slide_M + 1];
-  int n = 0;
-  // A sliding mass's guard: its velocity reaches zero (g = −v·slide rises through 0).
-  if (mode.slide_m != 0) {
-    auto& g = f.guard[n++];
-    g.wv(0) = -mode.slide_m;
-    g.id = kSmallStops;
-  }
-  if (mode.slide_M != 0) {
-    auto& g = f.guard[n++];
-    g.wv(1) = -mode.slide_M;
-    g.id = kLargeStops;
-  }
-  // The length limit: x − y rises to L_max (extension) or to −L_min (contraction).
-  auto& g = f.guard[n++];
-  g.wp << 1.0, -1.0;
-  g.w0 = mode.side > 0 ? -p_.L_max : p_.L_min;
-  g.id = kLengthLimit;
-  f.n_guards = n;
+  f.accel << stroke_.accel_x(mode.slide_m), stroke_.accel_y(mode.slide_M);
+  f.n_guards = stroke_.add_guards(f, 0, mode.slide_m, mode.slide_M, mode.side);
   return f;
 }
 
@@ -49,11 +20,11 @@ InstantSwapSystem::Mode InstantSwapSystem::reset(Mode mode, int guard_id, StateT
   switch (guard_id) {
     case kSmallStops:
       x(2) = 0.0;  // snap: the guard located v = 0 up to round-off
-      mode.slide_m = rest_m_;
+      mode.slide_m = stroke_.rest_x();
       return mode;
     case kLargeStops:
       x(3) = 0.0;
-      mode.slide_M = rest_M_;
+      mode.slide_M = stroke_.rest_y();
       return mode;
     case kLengthLimit: {
       // eq. 2.4: perfectly plastic collision, then the masses swap positions (§2.2.1).
@@ -81,7 +52,7 @@ InstantSwapSystem::Mode InstantSwapSystem::mode_of(const StateType& x, std::int8
     }
     return at_rest;
   };
-  return {direction(x(2), rest_m_), direction(x(3), rest_M_), side};
+  return {direction(x(2), stroke_.rest_x()), direction(x(3), stroke_.rest_y()), side};
 }
 
 InstantSwapSystem::StateType InstantSwapSystem::rest_state() const {

@@ -12,6 +12,7 @@
 
 #include "events/hybrid_system.hpp"
 #include "inchworm/params.hpp"
+#include "inchworm/stroke_dynamics.hpp"
 
 namespace slipwalk::inchworm {
 
@@ -22,10 +23,11 @@ class InstantSwapSystem {
   using StateType = events::State<kBodies>;
 
   /// Guard ids passed to reset().
+  /// Guard ids passed to reset(): those of the stroke.
   enum GuardId : int {
-    kSmallStops = 0,   ///< m's velocity reaches zero
-    kLargeStops = 1,   ///< M's velocity reaches zero
-    kLengthLimit = 2,  ///< x−y reaches L_max (extension) or −L_min (contraction)
+    kSmallStops = StrokeDynamics::kSmallStops,    ///< m's velocity reaches zero
+    kLargeStops = StrokeDynamics::kLargeStops,    ///< M's velocity reaches zero
+    kLengthLimit = StrokeDynamics::kLengthLimit,  ///< x−y reaches L_max or −L_min
   };
 
   /// The event that closes a half cycle (one stroke with its swap).
@@ -55,7 +57,7 @@ class InstantSwapSystem {
   /// What being in `mode` says about the half cycle: M sliding back while driven back
   /// (F > μMg) is regime II, two masses moving (§2.3.1).
   [[nodiscard]] unsigned mode_flags(Mode mode) const {
-    return mode.slide_M < 0 && accel_M_[0] < 0.0 ? kLargeMassSlidBack : 0U;
+    return mode.slide_M < 0 && stroke_.drives_y_back() ? kLargeMassSlidBack : 0U;
   }
   /// Both masses at rest, x − y = L_min, CoM at 0: the start of every thesis run (§2.3).
   [[nodiscard]] StateType rest_state() const;
@@ -69,10 +71,7 @@ class InstantSwapSystem {
 
  private:
   Params p_;
-  double accel_m_[3];   ///< m's acceleration when sliding backward, stuck, forward (index slide+1)
-  double accel_M_[3];   ///< M's acceleration likewise
-  std::int8_t rest_m_;  ///< m's mode when it comes to rest: +1 if F > μ_s m g, else 0
-  std::int8_t rest_M_;  ///< M's mode when it comes to rest: −1 if F > μ_s M g, else 0
+  StrokeDynamics stroke_;
 };
 
 }  // namespace slipwalk::inchworm

@@ -23,17 +23,8 @@ MassSwapSystem::MassSwapSystem(const Params& p)
       dm_(p.M - p.m),
       total_(2.0 * p.m + (p.M - p.m)),
       push_(p.alpha * p.F),
-      body_friction_(p.mu * p.g * (2.0 * p.m + (p.M - p.m))) {
-  const double fm = p.mu * p.m * p.g;
-  const double fM = p.mu * p.M * p.g;
-  accel_m_[0] = (p.F + fm) / p.m;
-  accel_m_[1] = 0.0;
-  accel_m_[2] = (p.F - fm) / p.m;
-  accel_M_[0] = -(p.F - fM) / p.M;
-  accel_M_[1] = 0.0;
-  accel_M_[2] = -(p.F + fM) / p.M;
-  rest_m_ = p.F > p.static_mu() * p.m * p.g ? 1 : 0;
-  rest_M_ = p.F > p.static_mu() * p.M * p.g ? -1 : 0;
+      body_friction_(p.mu * p.g * (2.0 * p.m + (p.M - p.m))),
+      stroke_(p) {
   body_breaks_away_ = push_ > p.static_mu() * p.g * total_;
 }
 
@@ -55,22 +46,9 @@ events::ModeFlow<3, 3> MassSwapSystem::flow(Mode mode) const {
   events::ModeFlow<3, 3> f;
   int n = 0;
   if (mode.phase == kStroke) {
-    const double aM = accel_M_[mode.slide_y + 1];
-    f.accel << accel_m_[mode.slide_x + 1], aM, aM;  // Δm rides on y
-    if (mode.slide_x != 0) {
-      auto& g = f.guard[n++];
-      g.wv(0) = -mode.slide_x;
-      g.id = kSmallStops;
-    }
-    if (mode.slide_y != 0) {
-      auto& g = f.guard[n++];
-      g.wv(1) = -mode.slide_y;
-      g.id = kLargeStops;
-    }
-    auto& g = f.guard[n++];
-    g.wp << 1.0, -1.0, 0.0;
-    g.w0 = mode.side > 0 ? -p_.L_max : p_.L_min;
-    g.id = kLengthLimit;
+    const double aM = stroke_.accel_y(mode.slide_y);
+    f.accel << stroke_.accel_x(mode.slide_x), aM, aM;  // Δm rides on y
+    n = stroke_.add_guards(f, n, mode.slide_x, mode.slide_y, mode.side);
   } else {
     if (mode.held != 0) {
       // Δm held at its start: the three slide together under friction alone.
@@ -97,8 +75,8 @@ events::ModeFlow<3, 3> MassSwapSystem::flow(Mode mode) const {
 MassSwapSystem::Mode MassSwapSystem::stroke_mode(double v, std::int8_t side) const {
   Mode mode;
   mode.phase = kStroke;
-  mode.slide_x = sign_or(v, rest_m_);
-  mode.slide_y = sign_or(v, rest_M_);
+  mode.slide_x = sign_or(v, stroke_.rest_x());
+  mode.slide_y = sign_or(v, stroke_.rest_y());
   mode.side = side;
   return mode;
 }
@@ -118,12 +96,12 @@ MassSwapSystem::Mode MassSwapSystem::reset(Mode mode, int guard_id, StateType& x
   switch (guard_id) {
     case kSmallStops:
       x(3) = 0.0;
-      mode.slide_x = rest_m_;
+      mode.slide_x = stroke_.rest_x();
       return mode;
     case kLargeStops:
       x(4) = 0.0;
       x(5) = 0.0;
-      mode.slide_y = rest_M_;
+      mode.slide_y = stroke_.rest_y();
       return mode;
     case kLengthLimit: {
       // eq. 2.4 between x and y + Δm; then the swap starts from the common velocity.

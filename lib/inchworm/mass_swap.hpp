@@ -25,6 +25,7 @@
 
 #include "events/hybrid_system.hpp"
 #include "inchworm/params.hpp"
+#include "inchworm/stroke_dynamics.hpp"
 
 namespace slipwalk::inchworm {
 
@@ -35,11 +36,11 @@ class MassSwapSystem {
   using StateType = events::State<kBodies>;
 
   enum GuardId : int {
-    kSmallStops = 0,   ///< stroke: x's velocity reaches zero
-    kLargeStops = 1,   ///< stroke: y's (and Δm's) velocity reaches zero
-    kLengthLimit = 2,  ///< stroke: x − y reaches L_max or −L_min; the swap starts
-    kBodyStops = 3,    ///< swap: the m–m body's velocity reaches zero
-    kArrival = 4,      ///< swap: Δm reaches x; the next stroke starts
+    kSmallStops = StrokeDynamics::kSmallStops,    ///< stroke: x's velocity reaches zero
+    kLargeStops = StrokeDynamics::kLargeStops,    ///< stroke: y's (and Δm's) reaches zero
+    kLengthLimit = StrokeDynamics::kLengthLimit,  ///< stroke ends: x − y at L_max or −L_min
+    kBodyStops = 3,                               ///< swap: the m–m body's velocity reaches zero
+    kArrival = 4,                                 ///< swap: Δm reaches x; the next stroke starts
   };
   /// The event that closes a half cycle (stroke + swap).
   static constexpr int kHalfCycleEnd = kArrival;
@@ -82,7 +83,7 @@ class MassSwapSystem {
   /// swap mode with the body stuck is a stop during the swap (§2.5.2).
   [[nodiscard]] unsigned mode_flags(Mode mode) const {
     unsigned f = 0;
-    if (mode.phase == kStroke && mode.slide_y < 0 && accel_M_[0] < 0.0) {
+    if (mode.phase == kStroke && mode.slide_y < 0 && stroke_.drives_y_back()) {
       f |= kLargeMassSlidBack;
     }
     if (mode.phase == kSwap && mode.slide_y == 0) {
@@ -104,10 +105,7 @@ class MassSwapSystem {
   double total_;           ///< 2m + Δm
   double push_;            ///< P = α F
   double body_friction_;   ///< μ g (2m + Δm)
-  double accel_m_[3];      ///< stroke: x's acceleration by slide (index slide + 1)
-  double accel_M_[3];      ///< stroke: y's and Δm's acceleration by slide
-  std::int8_t rest_m_;     ///< stroke: x's mode at rest (+1 if F > μ_s m g)
-  std::int8_t rest_M_;     ///< stroke: y's mode at rest (−1 if F > μ_s M g)
+  StrokeDynamics stroke_;  ///< the stroke phase
   bool body_breaks_away_;  ///< swap: α F > μ_s g (2m + Δm), the body cannot stay at rest
 };
 
