@@ -66,20 +66,15 @@ class CvodeBackend {
   SegmentEnd advance(const ModeFlow<N, G>& flow, double t0, State<N>& x, double t_end,
                      Observer&& observe = {}) {
     ++stats_.segments;
-    // g and dg/dt of every guard at t0; first_rising_root at τ = 0.
+    // g and dg/dt of every guard at t0; a guard on or above zero and rising fires at once.
     std::array<GuardSample, G> lo{};
     {
       State<N> dx;
       flow_rhs<N, G>(&flow, x.data(), dx.data());
       ++stats_.rhs_evals;
-      int fired = -1;
-      for (int k = 0; k < flow.n_guards; ++k) {
-        lo[k] = sample(flow.guard[k], x, dx);
-        if (lo[k].g >= 0.0 && lo[k].dg > 0.0) {
-          fired = k;
-        }
-      }
-      if (fired >= 0) {
+      stats_.guard_evals += flow.n_guards;
+      if (const int fired = guard_search::fires_at_start(flow, x.data(), dx.data(), lo.data());
+          fired >= 0) {
         return {t0, fired};
       }
     }
@@ -158,7 +153,7 @@ class CvodeBackend {
   template <int N>
   GuardSample sample(const AffineGuard<N>& g, const State<N>& y, const State<N>& dy) {
     ++stats_.guard_evals;
-    return {guard_value(g, y), g.wp.dot(dy.template head<N>()) + g.wv.dot(dy.template tail<N>())};
+    return guard_search::sample<N>(g, y.data(), dy.data());
   }
   template <int N>
   double value(const AffineGuard<N>& g, const double* y) {

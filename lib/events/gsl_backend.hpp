@@ -64,20 +64,15 @@ class GslBackend {
   SegmentEnd advance(const ModeFlow<N, G>& flow, double t0, State<N>& x, double t_end,
                      Observer&& observe = {}) {
     ++stats_.segments;
-    // g and dg/dt of every guard at t0; first_rising_root at τ = 0.
+    // g and dg/dt of every guard at t0; a guard on or above zero and rising fires at once.
     std::array<GuardSample, G> lo{};
     {
       State<N> dx;
       flow_rhs<N, G>(&flow, x.data(), dx.data());
       ++stats_.rhs_evals;
-      int fired = -1;
-      for (int k = 0; k < flow.n_guards; ++k) {
-        lo[k] = sample(flow.guard[k], x.data(), dx.data());
-        if (lo[k].g >= 0.0 && lo[k].dg > 0.0) {
-          fired = k;
-        }
-      }
-      if (fired >= 0) {
+      stats_.guard_evals += flow.n_guards;
+      if (const int fired = guard_search::fires_at_start(flow, x.data(), dx.data(), lo.data());
+          fired >= 0) {
         return {t0, fired};
       }
     }
@@ -150,12 +145,7 @@ class GslBackend {
   template <int N>
   GuardSample sample(const AffineGuard<N>& g, const double* y, const double* dy) {
     ++stats_.guard_evals;
-    GuardSample s{g.w0, 0.0};
-    for (int i = 0; i < N; ++i) {
-      s.g += g.wp(i) * y[i] + g.wv(i) * y[N + i];
-      s.dg += g.wp(i) * dy[i] + g.wv(i) * dy[N + i];
-    }
-    return s;
+    return guard_search::sample<N>(g, y, dy);
   }
 
   // Implemented in gsl_backend.cpp.

@@ -21,6 +21,33 @@ struct GuardSample {
   double dg = 0.0;
 };
 
+/// g and dg/dt of an affine guard from a state y = [p; v] and its time derivative dy, (2N) each.
+template <int N>
+[[nodiscard]] GuardSample sample(const AffineGuard<N>& g, const double* y, const double* dy) {
+  GuardSample s{g.w0, 0.0};
+  for (int i = 0; i < N; ++i) {
+    s.g += g.wp(i) * y[i] + g.wv(i) * y[N + i];
+    s.dg += g.wp(i) * dy[i] + g.wv(i) * dy[N + i];
+  }
+  return s;
+}
+
+/// The segment start, as first_rising_root at τ = 0: samples every active guard into lo[k] and
+/// returns the last one that is on or above zero and rising (it fires at once), or −1. A guard
+/// that is ≥ 0 and not rising does not fire at the start.
+template <int N, int G>
+[[nodiscard]] int fires_at_start(const ModeFlow<N, G>& flow, const double* y, const double* dy,
+                                 GuardSample* lo) {
+  int fired = -1;
+  for (int k = 0; k < flow.n_guards; ++k) {
+    lo[k] = sample<N>(flow.guard[k], y, dy);
+    if (lo[k].g >= 0.0 && lo[k].dg > 0.0) {
+      fired = k;
+    }
+  }
+  return fired;
+}
+
 /// The time tolerance of guard location: BackendOptions::event_tol, or 4ε·max(1, |t|).
 [[nodiscard]] inline double event_tolerance(const BackendOptions& options, double t) {
   return options.event_tol > 0.0 ? options.event_tol

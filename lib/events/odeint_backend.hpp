@@ -64,16 +64,11 @@ class OdeintBackend {
     std::copy(x.data(), x.data() + 2 * N, y.begin());
     Array<N> dy{};
     field(y, dy, t0);
-    // g and dg/dt of every guard at t0; first_rising_root at τ = 0.
+    // g and dg/dt of every guard at t0; a guard on or above zero and rising fires at once.
     std::array<GuardSample, G> lo{};
-    int fired = -1;
-    for (int k = 0; k < flow.n_guards; ++k) {
-      lo[k] = sample(flow.guard[k], y, dy);
-      if (lo[k].g >= 0.0 && lo[k].dg > 0.0) {
-        fired = k;
-      }
-    }
-    if (fired >= 0) {
+    stats_.guard_evals += flow.n_guards;
+    if (const int fired = guard_search::fires_at_start(flow, y.data(), dy.data(), lo.data());
+        fired >= 0) {
       return {t0, fired};
     }
     if (!(t_end > t0)) {
@@ -186,12 +181,7 @@ class OdeintBackend {
   template <int N>
   GuardSample sample(const AffineGuard<N>& g, const Array<N>& y, const Array<N>& dy) {
     ++stats_.guard_evals;
-    GuardSample s{g.w0, 0.0};
-    for (int i = 0; i < N; ++i) {
-      s.g += g.wp(i) * y[i] + g.wv(i) * y[N + i];
-      s.dg += g.wp(i) * dy[i] + g.wv(i) * dy[N + i];
-    }
-    return s;
+    return guard_search::sample<N>(g, y.data(), dy.data());
   }
 
   /// Hairer–Nørsett–Wanner's starting step for an order-5 method in the controller's norm.
