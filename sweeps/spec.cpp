@@ -9,16 +9,13 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "sweeps/toml_util.hpp"
 
 namespace slipwalk::sweeps {
 
 namespace {
 
 using core::InputError;
-
-std::string origin_of(const toml::source_region& region, const std::string& path) {
-  return path + ":" + std::to_string(region.begin.line) + ":" + std::to_string(region.begin.column);
-}
 
 bool before(const toml::source_region& a, const toml::source_region& b) {
   return a.begin.line != b.begin.line ? a.begin.line < b.begin.line
@@ -35,44 +32,6 @@ std::vector<std::pair<const toml::key*, const toml::node*>> in_file_order(const 
     return before(a.first->source(), b.first->source());
   });
   return out;
-}
-
-nlohmann::json to_json(const toml::node& node) {
-  if (const auto* t = node.as_table()) {
-    nlohmann::json out = nlohmann::json::object();
-    for (auto&& [k, v] : *t) {
-      out[std::string(k.str())] = to_json(v);
-    }
-    return out;
-  }
-  if (const auto* a = node.as_array()) {
-    nlohmann::json out = nlohmann::json::array();
-    for (const auto& v : *a) {
-      out.push_back(to_json(v));
-    }
-    return out;
-  }
-  if (const auto* i = node.as_integer()) {
-    return i->get();
-  }
-  if (const auto* f = node.as_floating_point()) {
-    return f->get();
-  }
-  if (const auto* s = node.as_string()) {
-    return s->get();
-  }
-  if (const auto* b = node.as_boolean()) {
-    return b->get();
-  }
-  std::ostringstream text;  // dates and times: their TOML spelling
-  if (const auto* d = node.as_date()) {
-    text << d->get();
-  } else if (const auto* tm = node.as_time()) {
-    text << tm->get();
-  } else if (const auto* dt = node.as_date_time()) {
-    text << dt->get();
-  }
-  return text.str();
 }
 
 /// A number or a text (the only value types a point takes).
@@ -435,7 +394,7 @@ Spec parse_spec(std::string_view text, const std::string& path, bool quick) {
   Spec spec;
   spec.path = path;
   spec.quick = quick;
-  spec.source = to_json(doc);
+  spec.source = toml_to_json(doc);
   spec.study = text_key(doc, "study", path, true);
   check_file_name(spec.study, "study", *doc.get("study"), path);
   spec.name = text_key(doc, "name", path, true);

@@ -15,32 +15,13 @@
 #include "core/error.hpp"
 #include "core/provenance.hpp"
 #include "sweeps/runner.hpp"
+#include "sweeps/toml_util.hpp"
 
 namespace slipwalk::sweeps {
 
 namespace {
 
 using core::InputError;
-
-std::string origin_of(const toml::source_region& region, const std::string& path) {
-  return path + ":" + std::to_string(region.begin.line) + ":" + std::to_string(region.begin.column);
-}
-
-nlohmann::json scalar_json(const toml::node& node) {
-  if (const auto* i = node.as_integer()) {
-    return i->get();
-  }
-  if (const auto* f = node.as_floating_point()) {
-    return f->get();
-  }
-  if (const auto* s = node.as_string()) {
-    return s->get();
-  }
-  if (const auto* b = node.as_boolean()) {
-    return b->get();
-  }
-  return nullptr;
-}
 
 double number(const toml::node& node, const std::string& key, const std::string& path) {
   const auto v = node.value<double>();
@@ -69,7 +50,7 @@ TraceJob parse_trace(const toml::table& t, const std::string& path) {
   for (auto&& [k, v] : t) {
     const std::string key(k.str());
     where[key] = origin_of(v.source(), path);
-    job.source[key] = scalar_json(v);
+    job.source[key] = toml_to_json(v);
     if (key == "name") {
       job.name = text(v, key, path);
     } else if (key == "F") {
