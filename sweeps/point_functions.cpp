@@ -192,22 +192,9 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
   try {
     inchworm::validate(p);
   } catch (const InputError& e) {
-    static const std::array<std::pair<std::string_view, std::string_view>, 8> kOptionKey{{
-        {"--alpha", "alpha"},
-        {"--m", "m"},
-        {"--M", "M"},
-        {"--L-min", "L_min"},
-        {"--L-max", "L_max"},
-        {"--g", "g"},
-        {"--mu", "mu"},
-        {"--mu-s", "mu_s"},
-    }};
-    std::string_view key = in.force_key;
-    for (const auto& [option, k] : kOptionKey) {
-      if (e.where() == option) {
-        key = k;
-      }
-    }
+    // --force maps to whichever force key the point used (F, F_frac or f_tilde).
+    const std::string_view mapped = inchworm::param_key_of_option(e.where());
+    const std::string_view key = mapped.empty() || mapped == "F" ? in.force_key : mapped;
     const std::string what = e.what();
     r.fail(key, what.substr(std::min(what.size(), e.where().size() + 2)));
   }

@@ -132,23 +132,8 @@ TraceJob parse_trace(const toml::table& t, const std::string& path) {
   try {
     inchworm::validate(job.params);
   } catch (const InputError& e) {
-    static const std::array<std::pair<std::string_view, const char*>, 9> kOptionKey{{
-        {"--alpha", "alpha"},
-        {"--m", "m"},
-        {"--M", "M"},
-        {"--L-min", "L_min"},
-        {"--L-max", "L_max"},
-        {"--g", "g"},
-        {"--mu", "mu"},
-        {"--mu-s", "mu_s"},
-        {"--force", "F"},
-    }};
-    std::string key = "F";
-    for (const auto& [option, k] : kOptionKey) {
-      if (e.where() == option) {
-        key = k;
-      }
-    }
+    const std::string_view mapped = inchworm::param_key_of_option(e.where());
+    const std::string key = mapped.empty() ? "F" : std::string(mapped);
     const std::string what = e.what();
     throw InputError(where.count(key) ? where[key] : job.origin,
                      key + ": " + what.substr(std::min(what.size(), e.where().size() + 2)));

@@ -46,4 +46,18 @@ void validate(const Params& p) {
               " N: the small mass never leaves static friction");
 }
 
+std::string_view param_key_of_option(std::string_view option) {
+  static constexpr std::pair<std::string_view, std::string_view> kOptionKey[] = {
+      {"--force", "F"},     {"--mu", "mu"}, {"--mu-s", "mu_s"},
+      {"--m", "m"},         {"--M", "M"},   {"--L-min", "L_min"},
+      {"--L-max", "L_max"}, {"--g", "g"},   {"--alpha", "alpha"},
+  };
+  for (const auto& [opt, key] : kOptionKey) {
+    if (opt == option) {
+      return key;
+    }
+  }
+  return {};
+}
+
 }  // namespace slipwalk::inchworm

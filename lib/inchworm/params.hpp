@@ -2,6 +2,7 @@
 // Parameters of the inchworm of thesis §2.2–2.3 (SI units). Defaults are the thesis' choices.
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 namespace slipwalk::inchworm {
 
@@ -32,6 +33,10 @@ struct Params {
 /// Throws core::InputError naming the offending option (--force, --mu, ...) when a parameter is
 /// out of its valid range or not a finite number.
 void validate(const Params& p);
+
+/// The Params field (as spec files name it: F, mu, mu_s, m, M, L_min, L_max, g, alpha) that a
+/// validate() error's option names; empty if the option is not one of validate()'s.
+[[nodiscard]] std::string_view param_key_of_option(std::string_view option);
 
 /// The regimes of §2.3.1: I, M stops and stays (F ≤ μ_s M g); II, M stops then slides back.
 enum class Regime { kOne = 1, kTwo = 2 };
