@@ -87,7 +87,8 @@ MassSwapSystem::Mode MassSwapSystem::swap_mode(double v, std::int8_t side) const
   mode.side = side;
   // At rest the body breaks away opposite to F_Δm (reaction −side·P) if static friction cannot
   // hold it.
-  mode.slide_y = sign_or(v, body_breaks_away_ ? static_cast<std::int8_t>(-side) : 0);
+  const std::int8_t at_rest = body_breaks_away_ ? static_cast<std::int8_t>(-side) : std::int8_t{0};
+  mode.slide_y = sign_or(v, at_rest);
   mode.held = pressed_into_start(mode.slide_y, side) ? 1 : 0;
   return mode;
 }
