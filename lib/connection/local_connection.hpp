@@ -1,0 +1,20 @@
+#pragma once
+// The local connection of thesis eq. 3.20: with the viscous-Coulomb ansatz the body velocity is
+// linear in the feet's planar velocities, v_body = A(q) · vec(q̇_xy) with A of size 3 × 2N
+// (columns 2k, 2k+1 for foot k; zero for feet in the air). Also the whole per-frame pipeline.
+#include "contact/robot.hpp"
+#include "contact/spring_support.hpp"
+#include "friction/solvers.hpp"
+
+namespace slipwalk::connection {
+
+/// Fills frame.A from frame.q, frame.contact, frame.Fz (needs contact::spring_support first).
+void local_connection(const contact::Robot& robot, contact::Frame& frame);
+
+enum class FrictionLaw { kViscousCoulomb, kCoulomb };
+
+/// One frame of the model: spring support, then the friction law's balance (and A for the
+/// viscous-Coulomb law). The `slipwalk model` command and trajectories call this.
+void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law);
+
+}  // namespace slipwalk::connection

@@ -1,0 +1,103 @@
+#pragma once
+// The multi-legged model of thesis ch. 3 (§3.2): a Robot (model: constants of the legs) and a
+// Frame (data: one evaluation's inputs, outputs and scratch), in the Pinocchio/MuJoCo split of
+// DESIGN.md. Algorithms are free functions f(const Robot&, Frame&, ...) in contact/, friction/ and
+// connection/; none allocates once a Frame exists.
+//
+// Frames and conventions (DESIGN.md, frame format): body frame x forward, y left, z up; SI units.
+// A foot below the body has q_z < 0. With roll slope α, pitch slope β and body height z, a foot's
+// height above the ground is  h_j = −β q_x,j + α q_y,j + q_z,j + z  (eq. 3.6); h_j < 0 means the
+// foot's spring is compressed and it is in contact.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace slipwalk::contact {
+
+/// Constants of a legged robot. Every leg is a vertical spring with Coulomb-type friction.
+struct Robot {
+  Eigen::VectorXd K;   ///< (N) leg spring stiffness, N/m; valid: > 0, finite
+  Eigen::VectorXd mu;  ///< (N) friction coefficient; valid: ≥ 0, finite
+  Eigen::Matrix2Xd w;  ///< (2 x N) anisotropy: enhanced-traction direction × magnitude in the
+                       ///< body frame (eq. 3.19, H ∝ I + w wᵀ); zero = isotropic
+  double Mg = 1.0;     ///< N, total weight carried by the legs; valid: > 0, finite
+
+  [[nodiscard]] int legs() const { return static_cast<int>(K.size()); }
+};
+
+/// A robot with n legs, all with stiffness K, friction μ, isotropic.
+[[nodiscard]] Robot uniform_robot(int n, double K = 1.0, double mu = 1.0, double Mg = 1.0);
+
+/// Throws core::InputError ("K[3]: must be positive, got -1") for sizes that disagree, values
+/// out of range and non-numbers.
+void validate(const Robot& robot);
+
+/// What the spring-support search did (§3.3, Alg. 1).
+struct SupportSummary {
+  enum class Status {
+    kBalanced,        ///< force and moment balance with ≥ 3 contacts (or a degenerate support
+                      ///< resolved as below), residual in `residual`
+    kLine,            ///< all contacts collinear with the CoM on their line: balanced, tilt about
+                      ///< the line undetermined (set to the least-norm tilt)
+    kPoint,           ///< one contact under the CoM: balanced, tilt undetermined (least-norm)
+    kUnsupported,     ///< the CoM lies outside the support polygon of every reachable contact set:
+                      ///< no balance exists (the robot would tip over); state is the last one
+    kIterationLimit,  ///< safety stop (should not happen; see contact/spring_support.hpp)
+  };
+  Status status = Status::kBalanced;
+  int iterations = 0;     ///< contact-set changes along the search path
+  double residual = 0.0;  ///< max(|ΣF_z − Mg|/Mg, |M_x|, |M_y| / (Mg·size)) at the end
+  std::string message;    ///< empty unless something noteworthy happened
+};
+
+/// What a friction solve did (§3.4).
+struct FrictionSummary {
+  bool converged = true;
+  int iterations = 0;        ///< 0 for the direct (viscous-Coulomb) solve
+  double residual = 0.0;     ///< planar force/moment balance residual, relative to Σ μ F_z
+  double certificate = 0.0;  ///< Coulomb: duality gap or optimality measure; 0 otherwise
+  bool unique = true;        ///< false when the balance has a continuum of solutions
+  std::string message;
+};
+
+/// One evaluation of the model: inputs, outputs ("computed by ..."), scratch.
+struct Frame {
+  explicit Frame(const Robot& robot);
+
+  // ---- inputs -------------------------------------------------------------------------------
+  Eigen::Matrix3Xd q;     ///< (3 x N) foot positions in the body frame, m
+  Eigen::Matrix3Xd qdot;  ///< (3 x N) foot velocities in the body frame, m/s (z unused)
+  double theta = 0.0;     ///< yaw, rad (world-frame outputs rotate by it)
+
+  // ---- computed by contact::spring_support (§3.3) -------------------------------------------
+  double alpha = 0.0;         ///< roll slope (eq. 3.6)
+  double beta = 0.0;          ///< pitch slope (eq. 3.6)
+  double z = 0.0;             ///< body height, m (eq. 3.6)
+  std::vector<char> contact;  ///< (N) 1 if the foot is on the ground (h_j < 0)
+  Eigen::VectorXd Fz;         ///< (N) normal loads, N (eq. 3.7); 0 for feet in the air
+  SupportSummary support;
+
+  // ---- computed by friction:: solvers and connection::local_connection (§3.4) ---------------
+  Eigen::Vector3d v_body = Eigen::Vector3d::Zero();  ///< (v_x, v_y, ω_z): R_θᵀ ṗ_xy,0 and θ̇
+  Eigen::Matrix2Xd Fxy;  ///< (2 x N) planar foot forces in the body frame, N
+  Eigen::MatrixXd A;     ///< (3 x 2N) local connection, eq. 3.20: v_body = A · vec(q̇_xy)
+  FrictionSummary friction;
+
+  // ---- scratch (sized once here; algorithms may use it freely) ------------------------------
+  Eigen::VectorXd work_n;     ///< (N)
+  Eigen::Matrix2Xd work_2n;   ///< (2 x N)
+  std::vector<int> work_idx;  ///< (N)
+
+  [[nodiscard]] int legs() const { return static_cast<int>(q.cols()); }
+};
+
+/// The height of foot j above the ground at (alpha, beta, z), eq. 3.6.
+[[nodiscard]] inline double foot_height(const Frame& f, int j, double alpha, double beta,
+                                        double z) {
+  return -beta * f.q(0, j) + alpha * f.q(1, j) + f.q(2, j) + z;
+}
+
+/// Throws core::InputError if the frame's sizes do not match the robot or an input is not finite.
+void check_frame(const Robot& robot, const Frame& frame);
+
+}  // namespace slipwalk::contact
