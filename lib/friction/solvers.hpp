@@ -2,9 +2,10 @@
 // Friction at the feet and the planar force/moment balance that gives the body velocity (thesis
 // §3.4). All solvers work in the body frame: with body velocity v_b = (v_x, v_y) and yaw rate ω,
 // foot k slides at  u_k = v_b + ω S q_xy,k + q̇_xy,k  (eq. 3.5 rotated by R_θᵀ, S = [0 −1; 1 0]);
-// the planar force is F_k = H_k u_k and balance means Σ F_k = 0 and Σ q_xy,kᵀ Sᵀ... = Σ M_z,k = 0
-// (eqs. 3.16–3.18). They read frame.q, frame.qdot, frame.contact and frame.Fz (from
-// contact::spring_support) and write frame.v_body, frame.Fxy and frame.friction. No allocation.
+// the planar force is F_k = H_k u_k and balance means Σ F_k = 0 and Σ M_z,k = Σ (q_xy,k × F_k)_z
+// = Σ q_xy,kᵀ Sᵀ F_k = 0 (eqs. 3.16–3.18). They read frame.q, frame.qdot, frame.contact and
+// frame.Fz (from contact::spring_support) and write frame.v_body, frame.Fxy and frame.friction. No
+// allocation.
 #include "contact/robot.hpp"
 
 namespace slipwalk::friction {
