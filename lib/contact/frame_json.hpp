@@ -1,0 +1,35 @@
+#pragma once
+// The frame format of DESIGN.md (`slipwalk model`), read and written here so that the command
+// line, the studies and the tests share one parser:
+//   in:  {"q": [[x,y,z],...], "qdot": [[x,y,z],...], "K": [...], "Mg": 1.0, "mu": [...],
+//         "w": [[wx,wy],...], "theta": 0.0}      (K, mu, w, theta, Mg optional: 1, 1, 0, 0, 1)
+//   out: {"alpha","beta","z","contact":[bool..],"Fz":[..],"v_body":[vx,vy,wz],
+//         "Fxy":[[fx,fy]..],"A":[[..]..] | null, "support":{..}, "friction":{..}}
+// Errors are core::InputError whose `where` is "<source>:<line>:<col>" for malformed JSON and
+// "<source>: <key>[j]" for a bad value.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "contact/robot.hpp"
+
+namespace slipwalk::contact {
+
+/// A robot and one frame of it, read together from one JSON object.
+struct FrameInput {
+  explicit FrameInput(Robot r) : robot(std::move(r)), frame(robot) {}
+  Robot robot;
+  Frame frame;
+};
+
+/// Parses the frame format; validates sizes, finiteness and ranges (validate(), check_frame()).
+[[nodiscard]] FrameInput parse_frame_json(std::string_view text, const std::string& source);
+
+/// Parses a robot alone: {"K": [...] | n legs given by "legs", "mu", "w", "Mg"} (for CSV batches).
+[[nodiscard]] Robot parse_robot_json(std::string_view text, const std::string& source);
+
+/// The outputs of a frame; A only if `with_connection` (the viscous-Coulomb law).
+[[nodiscard]] nlohmann::json frame_to_json(const Robot& robot, const Frame& frame,
+                                           bool with_connection);
+
+}  // namespace slipwalk::contact

@@ -1,0 +1,68 @@
+// The frame format of DESIGN.md: defaults, and every kind of bad input rejected with a message
+// that says what and where.
+#include <gtest/gtest.h>
+
+#include "contact/frame_json.hpp"
+#include "core/error.hpp"
+
+namespace slipwalk::contact {
+namespace {
+
+const char* kTripod = R"({"q": [[0.2, 0.1, -0.1], [-0.2, 0.1, -0.1], [0.0, -0.15, -0.1]],
+  "qdot": [[0.1, 0, 0], [0.1, 0, 0], [-0.2, 0, 0]], "Mg": 9.81})";
+
+std::string where_of(const std::string& text) {
+  try {
+    (void)parse_frame_json(text, "f.json");
+  } catch (const core::InputError& e) {
+    return e.where();
+  }
+  return "(accepted)";
+}
+
+TEST(FrameJson, ReadsTheFormatWithDefaults) {
+  const FrameInput in = parse_frame_json(kTripod, "f.json");
+  EXPECT_EQ(in.robot.legs(), 3);
+  EXPECT_EQ(in.robot.K, Eigen::VectorXd::Ones(3));
+  EXPECT_EQ(in.robot.mu, Eigen::VectorXd::Ones(3));
+  EXPECT_TRUE(in.robot.w.isZero());
+  EXPECT_DOUBLE_EQ(in.robot.Mg, 9.81);
+  EXPECT_DOUBLE_EQ(in.frame.q(1, 2), -0.15);
+  EXPECT_DOUBLE_EQ(in.frame.qdot(0, 2), -0.2);
+  EXPECT_EQ(in.frame.theta, 0.0);
+  EXPECT_EQ(in.frame.A.cols(), 6);
+}
+
+TEST(FrameJson, MalformedJsonNamesLineAndColumn) {
+  EXPECT_EQ(where_of("{\"q\": [[0,0,-1]],\n \"qdot\": [[0,0,0]] oops}"), "f.json:2:20");
+  EXPECT_EQ(where_of("{\"q\": [[NaN, 0, -1]], \"qdot\": [[0,0,0]]}"), "f.json:1:9");
+  EXPECT_EQ(where_of("[1, 2]"), "f.json");
+}
+
+TEST(FrameJson, BadValuesNameTheKeyAndLeg) {
+  const std::string qd = R"("qdot": [[0,0,0],[0,0,0]])";
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0]], )" + qd + "}"), "f.json: q[1]");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "qdot": [[0,0,0]]})"), "f.json: qdot");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "K": [1, -2], )" + qd + "}"), "f.json: K[1]");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "mu": [1, -0.1], )" + qd + "}"),
+            "f.json: mu[1]");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "Mg": 0, )" + qd + "}"), "f.json: Mg");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "Mg": "heavy", )" + qd + "}"), "f.json: Mg");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,"x",-1]], )" + qd + "}"), "f.json: q[1]");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "w": [[0,0]], )" + qd + "}"), "f.json: w");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "speed": 3, )" + qd + "}"), "f.json: speed");
+  EXPECT_EQ(where_of(R"({"qdot": [[0,0,0]]})"), "f.json: q");
+  EXPECT_EQ(where_of(R"({"q": [], "qdot": []})"), "f.json: q");
+  EXPECT_EQ(where_of(R"({"q": [[0,0,1e999]], "qdot": [[0,0,0]]})"), "f.json");  // overflow
+}
+
+TEST(FrameJson, RobotAloneForBatches) {
+  const Robot r = parse_robot_json(R"({"legs": 6, "Mg": 20})", "r.json");
+  EXPECT_EQ(r.legs(), 6);
+  EXPECT_DOUBLE_EQ(r.Mg, 20.0);
+  EXPECT_THROW((void)parse_robot_json(R"({"legs": 2.5})", "r.json"), core::InputError);
+  EXPECT_THROW((void)parse_robot_json(R"({"Mg": 1})", "r.json"), core::InputError);
+}
+
+}  // namespace
+}  // namespace slipwalk::contact
