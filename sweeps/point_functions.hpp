@@ -33,6 +33,9 @@ struct PointFunction {
   std::function<PointResult(const Point&)> run;  ///< for a checked point
 };
 
+/// The multi-legged model's point functions (sweeps/legged_points.cpp), merged into the registry.
+[[nodiscard]] std::vector<PointFunction> legged_point_functions();
+
 /// nullptr if no point function has this name.
 [[nodiscard]] const PointFunction* find_point_function(std::string_view name);
 /// "inchworm_vss|inchworm_convergence", for messages.
