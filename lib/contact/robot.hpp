@@ -32,21 +32,27 @@ struct Robot {
 /// out of range and non-numbers.
 void validate(const Robot& robot);
 
-/// What the spring-support search did (§3.3, Alg. 1).
+/// What the spring-support search did (§3.3, Alg. 1; contact/spring_support.hpp).
 struct SupportSummary {
   enum class Status {
-    kBalanced,        ///< force and moment balance with ≥ 3 contacts (or a degenerate support
-                      ///< resolved as below), residual in `residual`
-    kLine,            ///< all contacts collinear with the CoM on their line: balanced, tilt about
-                      ///< the line undetermined (set to the least-norm tilt)
-    kPoint,           ///< one contact under the CoM: balanced, tilt undetermined (least-norm)
-    kUnsupported,     ///< the CoM lies outside the support polygon of every reachable contact set:
-                      ///< no balance exists (the robot would tip over); state is the last one
-    kIterationLimit,  ///< safety stop (should not happen; see contact/spring_support.hpp)
+    kBalanced,        ///< force and moment balance with ≥ 3 contacts not on one line; the state
+                      ///< is the unique balance of its contact set
+    kLine,            ///< balanced on contacts along one line (two feet, or more in a row) with
+                      ///< the CoM on that line: z and loads are determined, the tilt about the
+                      ///< line is not; reported is the least |(α, β)| that keeps the other feet
+                      ///< off the ground
+    kPoint,           ///< balanced on contacts at one point under the CoM (e.g. one foot): z and
+                      ///< loads determined, tilt moved toward zero as far as the other feet allow
+    kUnsupported,     ///< no balance exists: the CoM is outside the support polygon of all feet
+                      ///< and the robot tips over (U is unbounded below). The state is where the
+                      ///< unbounded tilt starts: vertical balance holds there, moment balance not
+    kIterationLimit,  ///< safety stop after SupportOptions::max_iterations contact changes (not
+                      ///< reached in general position; see contact/spring_support.cpp)
   };
   Status status = Status::kBalanced;
-  int iterations = 0;     ///< contact-set changes along the search path
-  double residual = 0.0;  ///< max(|ΣF_z − Mg|/Mg, |M_x|, |M_y| / (Mg·size)) at the end
+  int iterations = 0;     ///< contact changes along the search path
+  double residual = 0.0;  ///< max(|ΣF_z − Mg|/Mg, |M_x|/(Mg·L), |M_y|/(Mg·L)) at the end, with
+                          ///< L = max_j |q_xy,j| the robot's horizontal size
   std::string message;    ///< empty unless something noteworthy happened
 };
 
@@ -73,7 +79,7 @@ struct Frame {
   double alpha = 0.0;         ///< roll slope (eq. 3.6)
   double beta = 0.0;          ///< pitch slope (eq. 3.6)
   double z = 0.0;             ///< body height, m (eq. 3.6)
-  std::vector<char> contact;  ///< (N) 1 if the foot is on the ground (h_j < 0)
+  std::vector<char> contact;  ///< (N) 1 if the foot is on the ground (h_j < 0; h_j = 0 is not)
   Eigen::VectorXd Fz;         ///< (N) normal loads, N (eq. 3.7); 0 for feet in the air
   SupportSummary support;
 

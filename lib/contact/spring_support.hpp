@@ -4,12 +4,19 @@
 // pitch slope β and height z; F_z,j = −K_j h_j for h_j < 0 (eq. 3.7). The search starts at the
 // height z* where vertical force balance holds with α = β = 0 (§3.3.1), then follows segments in
 // (α, β, z) toward the balance of the current contact set (eq. 3.9), stopping at the first contact
-// change on the way (eq. 3.10), and tilts the body under gravity when fewer than three feet touch
-// (eqs. 3.11, 3.12).
+// change on the way (eq. 3.10), and tilts the body under gravity when the contacts cannot balance
+// the moment (fewer than three feet, eqs. 3.11 and 3.12, or all contacts on one line).
 //
 // Oracle: the result is the minimizer of the convex potential
 //   U(α, β, z) = Σ_j ½ K_j min(h_j, 0)² + Mg z,
-// whose stationarity conditions are exactly ΣF_z = Mg and M_x = M_y = 0.
+// whose stationarity conditions are exactly ΣF_z = Mg and M_x = M_y = 0. U strictly decreases
+// along the search path; the choices made where the thesis is silent or misprinted (eq. 3.9's
+// matrix, the order and signs of eqs. 3.11/3.12, ties, termination) are derived in
+// spring_support.cpp.
+//
+// Contact convention: a foot is in contact when h_j < 0 by more than the rounding error of h_j
+// itself; a foot with h_j = 0 (exactly touching) is reported as not in contact, and its load is
+// zero either way (F_z is continuous in h_j).
 #include <vector>
 
 #include "contact/robot.hpp"
@@ -21,18 +28,29 @@ struct SupportStep {
   double alpha;
   double beta;
   double z;
-  int contacts;  ///< feet in contact after this step
+  int contacts;  ///< feet in the search's contact set after this step
   int changed;   ///< the leg whose contact changed at this step, −1 at the start and the end
 };
 
 struct SupportOptions {
-  int max_iterations = 0;                    ///< 0: a bound proven sufficient for N legs (see .cpp)
+  /// Safety limit on contact changes. 0: the number of cells of the arrangement of the N contact
+  /// planes h_j = 0 in (α, β, z) space, 1 + N + C(N,2) + C(N,3), which bounds the search in
+  /// general position (each cell is visited at most once, see spring_support.cpp). Reaching it
+  /// gives SupportSummary::Status::kIterationLimit.
+  int max_iterations = 0;
   std::vector<SupportStep>* path = nullptr;  ///< if set, every visited state is appended
 };
 
+/// The default iteration limit for n legs (see SupportOptions::max_iterations).
+[[nodiscard]] int default_support_iterations(int n);
+
+/// "balanced", "line", "point", "unsupported", "iteration-limit".
+[[nodiscard]] const char* status_name(SupportSummary::Status status);
+
 /// Fills frame.alpha, beta, z, contact, Fz and frame.support from frame.q. Never throws on
 /// degenerate input (it is recorded in frame.support); throws core::InputError only through
-/// check_frame for malformed frames.
+/// check_frame for malformed frames. Does not allocate (except to append to options.path, and a
+/// message for an unusual status).
 void spring_support(const Robot& robot, Frame& frame, const SupportOptions& options = {});
 
 }  // namespace slipwalk::contact
