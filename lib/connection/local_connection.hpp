@@ -13,8 +13,9 @@ void local_connection(const contact::Robot& robot, contact::Frame& frame);
 
 enum class FrictionLaw { kViscousCoulomb, kCoulomb };
 
-/// One frame of the model: spring support, then the friction law's balance (and A for the
-/// viscous-Coulomb law). The `slipwalk model` command and trajectories call this.
+/// One frame of the model: spring support, the local connection A (eq. 3.20 is defined by the
+/// viscous-Coulomb ansatz, so A is filled whatever the law), then the friction law's balance
+/// (v_body, Fxy, friction summary). The `slipwalk model` command and trajectories call this.
 void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law);
 
 }  // namespace slipwalk::connection

@@ -59,11 +59,18 @@ struct SupportSummary {
 /// What a friction solve did (§3.4).
 struct FrictionSummary {
   bool converged = true;
-  int iterations = 0;        ///< 0 for the direct (viscous-Coulomb) solve
-  double residual = 0.0;     ///< planar force/moment balance residual, relative to Σ μ F_z
-  double certificate = 0.0;  ///< Coulomb: duality gap or optimality measure; 0 otherwise
-  bool unique = true;        ///< false when the balance has a continuum of solutions
-  std::string message;
+  int iterations = 0;     ///< 0 for the direct (viscous-Coulomb) solve
+  double residual = 0.0;  ///< planar balance residual max(‖ΣF‖/F, |ΣM_z|/(F L)), F = the size
+                          ///< of the cancelling terms (Coulomb: Σ μF_z‖W‖; viscous: Σ μF_z‖G‖
+                          ///< (‖q̇‖ + ‖J x‖)), L = the largest lever arm of a foot in contact
+  double certificate = 0.0;  ///< Coulomb: relative duality gap (D(v) − dual)/max(D(v), D(0)) of
+                             ///< balanced forces in the friction disks; 0 otherwise
+  bool unique = true;        ///< false when the balance has a continuum of body velocities
+                             ///< (< 2 distinct contact points, or a flat minimum of D)
+  int static_feet = 0;       ///< Coulomb: feet in contact that do not slip (u_k = 0)
+  double dissipation = 0.0;  ///< −Σ F_k·u_k, the power the feet dissipate (Coulomb: W; the
+                             ///< viscous laws: in their own units, F = −μF_z u)
+  std::string message;       ///< empty unless something noteworthy happened
 };
 
 /// One evaluation of the model: inputs, outputs ("computed by ..."), scratch.

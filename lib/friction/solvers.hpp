@@ -5,7 +5,13 @@
 // the planar force is F_k = H_k u_k and balance means Σ F_k = 0 and Σ M_z,k = Σ (q_xy,k × F_k)_z
 // = Σ q_xy,kᵀ Sᵀ F_k = 0 (eqs. 3.16–3.18). They read frame.q, frame.qdot, frame.contact and
 // frame.Fz (from contact::spring_support) and write frame.v_body, frame.Fxy and frame.friction. No
-// allocation.
+// allocation (a message string is written only for degenerate or failed solves). The derivation
+// of the balance and where it corrects the thesis' printed matrices: friction/balance.hpp.
+//
+// Degenerate contact sets never give NaN: with no foot carrying friction v_body = 0; with all
+// contacts at one point the rotation about it is undetermined and the least-norm solution in
+// (v_x, v_y, L ω) (L the largest lever arm) is returned; both set friction.unique = false and say
+// so in friction.message.
 #include "contact/robot.hpp"
 
 namespace slipwalk::friction {
@@ -15,25 +21,37 @@ namespace slipwalk::friction {
 void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame);
 
 struct EpsilonOptions {
-  double tol = 1e-12;  ///< relative change of the body velocity at which iteration stops
-  int max_iterations = 200;
+  double tol = 1e-12;  ///< stop after two Newton steps in a row change the scaled body velocity
+                       ///< by less than tol · (‖v‖ + max ‖q̇_k‖), or when the balance holds to
+                       ///< rounding; valid: > 0
+  int max_iterations = 200;  ///< Newton steps; converged = false when reached
 };
 
-/// The ε-family of eq. 3.14, H_k = −μ_k F_z,k (ε + ‖u_k‖)/(ε + ‖u_k‖²) (times (I + w wᵀ)):
-/// ε → ∞ viscous-Coulomb, ε → 0 Coulomb. Nonlinear in v; solved iteratively from the
-/// viscous-Coulomb solution.
+/// The ε-family of eq. 3.14, H_k = −μ_k F_z,k (ε + s_k)/(ε + s_k²) (I + w_k w_kᵀ) with
+/// s_k = ‖W_k u_k‖, W_k = (I + w_k w_kᵀ)^{1/2} (= ‖u_k‖ for isotropic feet, as printed): ε → ∞
+/// gives viscous-Coulomb, ε → 0 Coulomb (solve_coulomb's law, anisotropy included). Nonlinear in
+/// v: Newton's method on the potential whose gradient is the balance, from the viscous-Coulomb
+/// solution (see epsilon.cpp; the law is not convex for s_k > 1 + √(1 + ε), which the message
+/// flags). ε = +∞ is solve_viscous_coulomb exactly; ε ≤ 0 or NaN throws core::InputError.
 void solve_epsilon(const contact::Robot& robot, contact::Frame& frame, double epsilon,
                    const EpsilonOptions& options = {});
 
 struct CoulombOptions {
-  double tol = 1e-10;  ///< target of the optimality certificate (relative duality gap)
-  int max_iterations = 500;
+  double tol = 1e-10;        ///< target of the certificate, the relative duality gap; valid: > 0
+  int max_iterations = 500;  ///< Newton steps (smoothing path and polish together)
 };
 
-/// Classical Coulomb friction, F_k = −μ_k F_z,k u_k/‖u_k‖ (eq. 3.13): the balance is the
-/// optimality condition of minimizing the total dissipation D(v) = Σ μ_k F_z,k ‖u_k(v)‖ over
-/// v = (v_x, v_y, ω), a convex problem; feet with u_k = 0 carry any force in their friction disk.
-/// Always terminates; frame.friction reports the certificate and whether the minimizer is unique.
+/// Classical Coulomb friction, F_k = −μ_k F_z,k u_k/‖u_k‖ (eq. 3.13; anisotropic: the friction
+/// ellipse {F : Fᵀ G_k⁻¹ F ≤ (μ_k F_z,k)²} of eq. 3.19's G_k, F_k = −μ_k F_z,k G_k u_k/‖W_k u_k‖).
+/// The balance is the optimality condition of minimizing the dissipation
+/// D(v) = Σ μ_k F_z,k ‖W_k u_k(v)‖ over v = (v_x, v_y, ω), a convex, nonsmooth problem; feet with
+/// u_k = 0 (static friction) carry any balancing force in their friction ellipse.
+/// Always terminates (options.max_iterations); frame.Fxy are dual-feasible forces (balanced to
+/// rounding, inside the ellipses) and friction.certificate is the relative duality gap
+/// (D(v) − Σ F_k·(−q̇_k)) / max(D(v), D(0)) they prove; converged ⇔ certificate ≤ tol.
+/// friction.unique is false when D is flat at the optimum (a continuum of velocities balances,
+/// e.g. the even-N 1-D example of §3.1.2); friction.static_feet counts the feet that do not slip.
+/// Algorithm and tolerances: friction/coulomb.cpp.
 void solve_coulomb(const contact::Robot& robot, contact::Frame& frame,
                    const CoulombOptions& options = {});
 

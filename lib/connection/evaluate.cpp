@@ -1,0 +1,24 @@
+// One frame of the multi-legged model (Alg. 1): spring support, local connection, friction law.
+// Kept apart from local_connection.cpp so that code using only the connection does not link the
+// spring-support search.
+#include "connection/local_connection.hpp"
+
+namespace slipwalk::connection {
+
+void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law) {
+  // 1. Which feet touch and what they carry (§3.3).
+  contact::spring_support(robot, frame);
+  // 2. The local connection of eq. 3.20, defined for every frame whatever the law.
+  local_connection(robot, frame);
+  // 3. The friction law's balance: body velocity, foot forces, summary (§3.4).
+  switch (law) {
+    case FrictionLaw::kViscousCoulomb:
+      friction::solve_viscous_coulomb(robot, frame);
+      break;
+    case FrictionLaw::kCoulomb:
+      friction::solve_coulomb(robot, frame);
+      break;
+  }
+}
+
+}  // namespace slipwalk::connection

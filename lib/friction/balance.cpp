@@ -1,0 +1,130 @@
+#include "friction/balance.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+
+namespace slipwalk::friction::detail {
+
+Contacts prepare(const contact::Robot& robot, contact::Frame& frame) {
+  Contacts out;
+  double L2 = 0.0;
+  for (int k = 0; k < frame.legs(); ++k) {
+    const double c = friction_weight(robot, frame, k);
+    if (c == 0.0) {
+      continue;
+    }
+    ++out.active;
+    out.c_sum += c;
+    L2 = std::max(L2, frame.q.col(k).head<2>().squaredNorm());
+    const double w2 = robot.w.col(k).squaredNorm();
+    if (w2 > 0.0) {
+      out.anisotropic = true;
+    }
+  }
+  out.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
+  out.inv_L = 1.0 / out.L;
+  if (out.anisotropic) {
+    for (int k = 0; k < frame.legs(); ++k) {
+      frame.work_n(k) = 1.0 / (1.0 + std::sqrt(1.0 + robot.w.col(k).squaredNorm()));
+    }
+  }
+  return out;
+}
+
+bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol) {
+  // Unpivoted LDLᵀ of a symmetric matrix; a pivot ≤ pivot_tol · trace means "not definite".
+  const double floor = pivot_tol * std::max(M.trace(), 0.0);
+  d_(0) = M(0, 0);
+  if (!(d_(0) > floor)) {
+    return false;
+  }
+  l10_ = M(1, 0) / d_(0);
+  l20_ = M(2, 0) / d_(0);
+  d_(1) = M(1, 1) - l10_ * l10_ * d_(0);
+  if (!(d_(1) > floor)) {
+    return false;
+  }
+  l21_ = (M(2, 1) - l20_ * l10_ * d_(0)) / d_(1);
+  d_(2) = M(2, 2) - l20_ * l20_ * d_(0) - l21_ * l21_ * d_(1);
+  return d_(2) > floor;
+}
+
+bool Psd3::factorize_definite(const Eigen::Matrix3d& M, double pivot_tol) {
+  chol_ = ldlt(M, pivot_tol);
+  rank_ = chol_ ? 3 : -1;
+  return chol_;
+}
+
+bool Psd3::factorize(const Eigen::Matrix3d& M) {
+  if (ldlt(M, kRankTol)) {
+    chol_ = true;
+    rank_ = 3;
+    return true;
+  }
+  chol_ = false;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(M);
+  const Eigen::Vector3d lam = es.eigenvalues();
+  const double floor = kRankTol * std::max(lam.cwiseAbs().sum(), 0.0);
+  V_ = es.eigenvectors();
+  rank_ = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (lam(i) > floor && floor > 0.0) {
+      inv_lambda_(i) = 1.0 / lam(i);
+      ++rank_;
+    } else {
+      inv_lambda_(i) = 0.0;
+    }
+  }
+  return false;
+}
+
+Eigen::Vector3d Psd3::solve(const Eigen::Vector3d& b) const {
+  if (chol_) {
+    // L z = b, D w = z, Lᵀ x = w.
+    const double z0 = b(0);
+    const double z1 = b(1) - l10_ * z0;
+    const double z2 = b(2) - l20_ * z0 - l21_ * z1;
+    const double x2 = z2 / d_(2);
+    const double x1 = z1 / d_(1) - l21_ * x2;
+    const double x0 = z0 / d_(0) - l10_ * x1 - l20_ * x2;
+    return {x0, x1, x2};
+  }
+  return V_ * inv_lambda_.cwiseProduct(V_.transpose() * b);
+}
+
+Eigen::Matrix3d Psd3::inverse() const {
+  if (chol_) {
+    Eigen::Matrix3d inv;
+    for (int j = 0; j < 3; ++j) {
+      inv.col(j) = solve(Eigen::Vector3d::Unit(j));
+    }
+    return inv;
+  }
+  return V_ * inv_lambda_.asDiagonal() * V_.transpose();
+}
+
+void Psd3::add_null_space(Eigen::Matrix3d& A, double scale) const {
+  if (chol_ || rank_ == 3) {
+    return;
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (inv_lambda_(i) == 0.0) {
+      A += scale * V_.col(i) * V_.col(i).transpose();
+    }
+  }
+}
+
+Eigen::Vector3d Psd3::project_to_range(const Eigen::Vector3d& y) const {
+  if (chol_ || rank_ == 3) {
+    return y;
+  }
+  Eigen::Vector3d out = y;
+  for (int i = 0; i < 3; ++i) {
+    if (inv_lambda_(i) == 0.0) {
+      out -= V_.col(i) * V_.col(i).dot(y);
+    }
+  }
+  return out;
+}
+
+}  // namespace slipwalk::friction::detail

@@ -1,0 +1,211 @@
+#pragma once
+// Internal to friction/ and connection/: the planar force/moment balance shared by the friction
+// solvers and the local connection (thesis §3.4, derived here in body coordinates).
+//
+// Body-frame balance. With x = (v_x, v_y, ω) (v = R_θᵀ ṗ_xy,0, ω = θ̇) foot k slides at
+//   u_k = v + ω S q_k + q̇_k = J_k x + q̇_k,   J_k = [ I₂ | S q_k ]  (2 × 3),
+// (eq. 3.5 premultiplied by R_θᵀ). Its planar force is F_k = −c_k φ_k G_k u_k with c_k = μ_k F_z,k,
+// G_k = I + w_k w_kᵀ (eq. 3.19 in body coordinates: R_θ H_q R_θᵀ rotated back) and φ_k = 1
+// (viscous-Coulomb), (ε + s_k)/(ε + s_k²) (eq. 3.14) or 1/s_k (Coulomb), s_k = ‖W_k u_k‖,
+// W_k = G_k^{1/2}. Force balance Σ F_k = 0 and moment balance Σ (q_k × F_k)_z = Σ (S q_k)ᵀ F_k = 0
+// together read Σ J_kᵀ F_k = 0, i.e.
+//   M x = −b,   M = Σ c_k φ_k J_kᵀ G_k J_k = Σ c_k φ_k [ G_k      G_k S q_k       ]
+//                                                    [ (S q_k)ᵀ G_k  (S q_k)ᵀ G_k S q_k ],
+//               b = Σ c_k φ_k J_kᵀ G_k q̇_k = Σ c_k φ_k [ G_k q̇_k ; (S q_k)ᵀ G_k q̇_k ].
+// M is symmetric positive semidefinite, definite as soon as two distinct points carry friction.
+// The thesis (§3.4.3) prints the moment row with q_kᵀ S instead of (S q_k)ᵀ = −q_kᵀ S (so its
+// matrix is not symmetric; the row's sign flips, harmless for "= 0"), the right-hand side without
+// its minus sign, and an extra Σ_k in front of eq. 3.20; with those fixed, eq. 3.20 is
+//   x = −M⁻¹ Σ_k c_k J_kᵀ G_k q̇_k = Σ_k A_k q̇_k,   A_k = −c_k M⁻¹ J_kᵀ G_k.
+//
+// Numerics. The solvers work in scaled coordinates y = (v_x, v_y, L ω) with L the largest lever
+// arm ‖q_xy,k‖ of a foot with friction (J̃_k = [I | S q_k / L]): all three unknowns are then
+// velocities, M̃ = D M D (D = diag(1, 1, 1/L)) is well scaled, "least norm" is unit-consistent
+// and one relative rank tolerance serves every robot size.
+#include <Eigen/Core>
+#include <cmath>
+
+#include "contact/robot.hpp"
+
+namespace slipwalk::friction::detail {
+
+/// Eigenvalues of M̃ below kRankTol · trace count as zero (contacts closer than ~1e-6 L are one
+/// point: the rotation about it is undetermined).
+inline constexpr double kRankTol = 1e-12;
+
+/// c_k = μ_k F_z,k for a foot in contact that carries friction, 0 otherwise (and for NaN).
+inline double friction_weight(const contact::Robot& robot, const contact::Frame& frame, int k) {
+  if (frame.contact[static_cast<std::size_t>(k)] == 0) {
+    return 0.0;
+  }
+  const double c = robot.mu(k) * frame.Fz(k);
+  return c > 0.0 && std::isfinite(c) ? c : 0.0;
+}
+
+/// Per-solve constants. prepare() also stores, for an anisotropic robot, α_k of
+/// W_k = I + α_k w_k w_kᵀ = G_k^{1/2} in frame.work_n (α = 1 / (1 + √(1 + ‖w‖²))).
+struct Contacts {
+  int active = 0;            ///< feet with c_k > 0
+  double L = 1.0;            ///< lever scale, m (max ‖q_xy,k‖ over active feet; 1 if all at 0)
+  double inv_L = 1.0;        ///< 1 / L
+  double c_sum = 0.0;        ///< Σ c_k, N
+  bool anisotropic = false;  ///< some active foot has w_k ≠ 0
+};
+Contacts prepare(const contact::Robot& robot, contact::Frame& frame);
+
+/// The metric of foot k: G = I + w wᵀ and its square root W = I + α w wᵀ. The isotropic
+/// specialization is the identity, so a flat isotropic robot pays nothing for anisotropy.
+template <bool kAniso>
+struct Metric {
+  const contact::Robot& robot;
+  const contact::Frame& frame;
+  [[nodiscard]] Eigen::Vector2d G(int k, const Eigen::Vector2d& a) const {
+    if constexpr (kAniso) {
+      const auto w = robot.w.col(k);
+      return a + w * w.dot(a);
+    } else {
+      (void)k;
+      return a;
+    }
+  }
+  [[nodiscard]] Eigen::Vector2d W(int k, const Eigen::Vector2d& a) const {
+    if constexpr (kAniso) {
+      const auto w = robot.w.col(k);
+      return a + frame.work_n(k) * w * w.dot(a);
+    } else {
+      (void)k;
+      return a;
+    }
+  }
+  [[nodiscard]] Eigen::Vector2d W_inv(int k, const Eigen::Vector2d& a) const {
+    if constexpr (kAniso) {
+      const auto w = robot.w.col(k);
+      const double al = frame.work_n(k);
+      return a - (al / (1.0 + al * w.squaredNorm())) * w * w.dot(a);
+    } else {
+      (void)k;
+      return a;
+    }
+  }
+  /// G as a matrix (for assembling M).
+  [[nodiscard]] Eigen::Matrix2d G(int k) const {
+    if constexpr (kAniso) {
+      const auto w = robot.w.col(k);
+      return Eigen::Matrix2d::Identity() + w * w.transpose();
+    } else {
+      (void)k;
+      return Eigen::Matrix2d::Identity();
+    }
+  }
+  [[nodiscard]] Eigen::Matrix2d W(int k) const {
+    if constexpr (kAniso) {
+      const auto w = robot.w.col(k);
+      return Eigen::Matrix2d::Identity() + frame.work_n(k) * w * w.transpose();
+    } else {
+      (void)k;
+      return Eigen::Matrix2d::Identity();
+    }
+  }
+};
+
+/// s̃_k = S q_xy,k / L: the third column of J̃_k.
+inline Eigen::Vector2d lever(const contact::Frame& frame, int k, double inv_L) {
+  return Eigen::Vector2d(-frame.q(1, k) * inv_L, frame.q(0, k) * inv_L);
+}
+
+/// u_k = J̃_k y + q̇_k, given the lever s̃_k.
+inline Eigen::Vector2d slip(const contact::Frame& frame, int k, const Eigen::Vector2d& s,
+                            const Eigen::Vector3d& y) {
+  return Eigen::Vector2d(y(0) + frame.qdot(0, k) + y(2) * s(0),
+                         y(1) + frame.qdot(1, k) + y(2) * s(1));
+}
+
+/// J̃ᵀ a for J̃ = [I | s].
+inline Eigen::Vector3d jt(const Eigen::Vector2d& s, const Eigen::Vector2d& a) {
+  return {a(0), a(1), s.dot(a)};
+}
+
+/// M += J̃ᵀ P J̃ for a symmetric 2 × 2 P (upper triangle and lower triangle both written).
+inline void add_jt_p_j(Eigen::Matrix3d& M, const Eigen::Vector2d& s, const Eigen::Matrix2d& P) {
+  const Eigen::Vector2d Ps = P * s;
+  M.topLeftCorner<2, 2>() += P;
+  M(0, 2) += Ps(0);
+  M(1, 2) += Ps(1);
+  M(2, 0) += Ps(0);
+  M(2, 1) += Ps(1);
+  M(2, 2) += s.dot(Ps);
+}
+
+/// A symmetric positive semidefinite 3 × 3 system, solved in the least-norm sense: an unpivoted
+/// LDLᵀ when every pivot exceeds kRankTol · trace (the usual, full-rank case; ~20 flops), else a
+/// symmetric eigendecomposition whose eigenvalues below kRankTol · trace count as zero.
+class Psd3 {
+ public:
+  /// Returns false when the matrix is not (numerically) positive definite, i.e. the eigen path.
+  bool factorize(const Eigen::Matrix3d& M);
+  /// Like factorize(), but returns false without any fallback work when a pivot is below
+  /// pivot_tol · trace (the caller then uses another matrix); solve() is only valid after a true
+  /// return.
+  bool factorize_definite(const Eigen::Matrix3d& M, double pivot_tol = kRankTol);
+  [[nodiscard]] Eigen::Vector3d solve(const Eigen::Vector3d& b) const;
+  [[nodiscard]] Eigen::Matrix3d inverse() const;
+  [[nodiscard]] int rank() const { return rank_; }
+  /// Removes from y its components along the null space (no-op when full rank).
+  [[nodiscard]] Eigen::Vector3d project_to_range(const Eigen::Vector3d& y) const;
+  /// A += scale · (projector onto the null space) (no-op when full rank).
+  void add_null_space(Eigen::Matrix3d& A, double scale) const;
+
+ private:
+  bool ldlt(const Eigen::Matrix3d& M, double pivot_tol);
+  bool chol_ = true;
+  int rank_ = 3;
+  double l10_ = 0, l20_ = 0, l21_ = 0;
+  Eigen::Vector3d d_ = Eigen::Vector3d::Ones();
+  Eigen::Matrix3d V_ = Eigen::Matrix3d::Identity();       ///< eigenvectors (eigen path)
+  Eigen::Vector3d inv_lambda_ = Eigen::Vector3d::Zero();  ///< 1/λ or 0 (eigen path)
+};
+
+/// Assembles M̃ = Σ c_k φ_k J̃ᵀ G J̃ and b̃ = Σ c_k φ_k J̃ᵀ G q̇ (φ ≡ 1) in scaled coordinates.
+template <bool kAniso>
+void viscous_system(const contact::Robot& robot, const contact::Frame& frame, double inv_L,
+                    Eigen::Matrix3d& M, Eigen::Vector3d& b) {
+  const Metric<kAniso> metric{robot, frame};
+  M.setZero();
+  b.setZero();
+  for (int k = 0; k < frame.legs(); ++k) {
+    const double c = friction_weight(robot, frame, k);
+    if (c == 0.0) {
+      continue;
+    }
+    const Eigen::Vector2d s = lever(frame, k, inv_L);
+    add_jt_p_j(M, s, c * metric.G(k));
+    b += jt(s, c * metric.G(k, frame.qdot.col(k).head<2>()));
+  }
+}
+
+/// Writes v_body from scaled coordinates.
+inline void set_velocity(contact::Frame& frame, const Eigen::Vector3d& y, double L) {
+  frame.v_body = Eigen::Vector3d(y(0), y(1), y(2) / L);
+}
+
+/// Σ F_k and Σ (q_k × F_k)_z of the forces written so far, and the relative balance residual
+/// max(‖Σ F‖ / F, |Σ M| / (F L)) with F the force scale the caller supplies (the magnitude of the
+/// terms that cancel); 0 when F = 0.
+struct BalanceSum {
+  Eigen::Vector2d force = Eigen::Vector2d::Zero();
+  double moment = 0.0;
+  void add(const contact::Frame& frame, int k, const Eigen::Vector2d& f) {
+    force += f;
+    moment += frame.q(0, k) * f(1) - frame.q(1, k) * f(0);
+  }
+  [[nodiscard]] double residual(double force_scale, double L) const {
+    if (!(force_scale > 0.0)) {
+      return 0.0;
+    }
+    const double r = force.norm() / force_scale;
+    const double m = std::abs(moment) / (force_scale * L);
+    return r > m ? r : m;
+  }
+};
+
+}  // namespace slipwalk::friction::detail

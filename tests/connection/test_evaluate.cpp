@@ -1,0 +1,81 @@
+// connection::evaluate, the whole frame: spring support, then the friction balance and A. Checked
+// against the stages run by hand and against the physics of a symmetric robot.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "connection/local_connection.hpp"
+#include "contact/robot.hpp"
+#include "contact/spring_support.hpp"
+#include "friction/solvers.hpp"
+
+namespace slipwalk::connection {
+namespace {
+
+contact::Frame hexapod_frame(const contact::Robot& robot, std::mt19937& rng) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  contact::Frame f(robot);
+  for (int k = 0; k < robot.legs(); ++k) {
+    const double a = 2.0 * M_PI * k / robot.legs();
+    f.q.col(k) << 0.3 * std::cos(a) + 0.03 * U(rng), 0.3 * std::sin(a) + 0.03 * U(rng),
+        -0.1 + 0.01 * U(rng);
+    f.qdot.col(k) << 0.1 * U(rng), 0.1 * U(rng), 0.0;
+  }
+  return f;
+}
+
+TEST(ConnectionEvaluate, IsSpringSupportThenTheFrictionLaw) {
+  std::mt19937 rng(1);
+  const contact::Robot robot = contact::uniform_robot(6, 100.0, 0.8, 9.81);
+  for (int trial = 0; trial < 50; ++trial) {
+    contact::Frame f = hexapod_frame(robot, rng);
+    contact::Frame g = f;
+    for (FrictionLaw law : {FrictionLaw::kViscousCoulomb, FrictionLaw::kCoulomb}) {
+      evaluate(robot, f, law);
+      contact::spring_support(robot, g);
+      EXPECT_EQ(f.contact, g.contact);
+      EXPECT_EQ((f.Fz - g.Fz).norm(), 0.0);
+      if (law == FrictionLaw::kViscousCoulomb) {
+        friction::solve_viscous_coulomb(robot, g);
+      } else {
+        friction::solve_coulomb(robot, g);
+      }
+      EXPECT_EQ((f.v_body - g.v_body).norm(), 0.0);
+      EXPECT_TRUE(f.friction.converged);
+      EXPECT_LE(f.friction.residual, 1e-10);
+      local_connection(robot, g);
+      EXPECT_EQ((f.A - g.A).norm(), 0.0);
+      for (int k = 0; k < robot.legs(); ++k) {
+        if (f.contact[static_cast<std::size_t>(k)] == 0) {
+          EXPECT_EQ(f.A.middleCols<2>(2 * k).norm(), 0.0);
+          EXPECT_EQ(f.Fxy.col(k).norm(), 0.0);
+        }
+      }
+    }
+  }
+}
+
+TEST(ConnectionEvaluate, SymmetricRobotPushingBackwardsMovesForward) {
+  // Six legs on a circle, all on the ground with equal loads, all sweeping backwards at 0.1 m/s:
+  // every law gives v = (0.1, 0, 0).
+  const contact::Robot robot = contact::uniform_robot(6);
+  contact::Frame f(robot);
+  for (int k = 0; k < 6; ++k) {
+    const double a = 2.0 * M_PI * k / 6.0;
+    f.q.col(k) << 0.3 * std::cos(a), 0.3 * std::sin(a), -0.1;
+    f.qdot.col(k) << -0.1, 0.0, 0.0;
+  }
+  for (FrictionLaw law : {FrictionLaw::kViscousCoulomb, FrictionLaw::kCoulomb}) {
+    evaluate(robot, f, law);
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_EQ(f.contact[static_cast<std::size_t>(k)], 1);
+    }
+    EXPECT_NEAR(f.v_body(0), 0.1, 1e-14);
+    EXPECT_NEAR(f.v_body(1), 0.0, 1e-14);
+    EXPECT_NEAR(f.v_body(2), 0.0, 1e-13);
+  }
+}
+
+}  // namespace
+}  // namespace slipwalk::connection
