@@ -13,9 +13,10 @@
 //                                                    [ (S q_k)ᵀ G_k  (S q_k)ᵀ G_k S q_k ],
 //               b = Σ c_k φ_k J_kᵀ G_k q̇_k = Σ c_k φ_k [ G_k q̇_k ; (S q_k)ᵀ G_k q̇_k ].
 // M is symmetric positive semidefinite, definite as soon as two distinct points carry friction.
-// The thesis (§3.4.3) prints the moment row with q_kᵀ S instead of (S q_k)ᵀ = −q_kᵀ S (so its
-// matrix is not symmetric; the row's sign flips, harmless for "= 0"), the right-hand side without
-// its minus sign, and an extra Σ_k in front of eq. 3.20; with those fixed, eq. 3.20 is
+// The thesis (§3.4.3) prints the moment row with q_kᵀ S instead of (S q_k)ᵀ = −q_kᵀ S (eq. 3.17
+// defines M_z = p̄ᵀ S F = −(p̄ × F)_z; its matrix is then not symmetric and the row's sign flips,
+// harmless for "= 0"), garbles the block row of the intermediate system, drops the minus sign
+// of the right-hand side and puts an extra Σ_k in front of eq. 3.20; with those fixed, eq. 3.20 is
 //   x = −M⁻¹ Σ_k c_k J_kᵀ G_k q̇_k = Σ_k A_k q̇_k,   A_k = −c_k M⁻¹ J_kᵀ G_k.
 //
 // Numerics. The solvers work in scaled coordinates y = (v_x, v_y, L ω) with L the largest lever

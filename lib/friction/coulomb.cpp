@@ -17,10 +17,10 @@
 // Algorithm (always terminates: every loop is bounded by options.max_iterations).
 //  1. Start at the viscous-Coulomb solution (if nothing slips there, certify that at once).
 //  2. Smoothing path: damped Newton steps (Armijo) on D_δ(y) = Σ √(‖r_k‖² + δ²) (smooth,
-//     convex); a stage ends when the Newton decrement falls below δ (or after 8 steps), and δ is
-//     then divided by 10, from δ₀ = 0.1 D(start)/N down to δ_min = 0.1 tol D/N, where the
-//     smoothing error alone is within the tolerance. Near δ_min the path's own dual
-//     λ_k = r_k/√(‖r_k‖² + δ²) is certified (step 4).
+//     convex, its Hessian regularized only along directions no foot feels); a stage ends when
+//     the Newton decrement falls below 3δ (or after 8 steps), and δ is then divided by 10, from
+//     δ₀ = 0.1 D(start)/N down to δ_min = 0.1 tol D/N, where the smoothing error alone is within
+//     the tolerance. Near δ_min the path's own dual λ_k = r_k/√(‖r_k‖² + δ²) is certified too.
 //  3. Polish at the end of each stage (active set): feet with ‖r_k‖ ≤ min(10 δ, 0.01 D/N) are
 //     static, and so is the slowest other foot if it is clearly apart (‖r‖ ≤ 0.1 × the next
 //     and ≤ 10³ δ: a static foot whose force lies near the rim of its disk keeps
@@ -30,12 +30,14 @@
 //     by Newton's method, which is smooth and converges quadratically if the static set is right
 //     (the attempt is abandoned as soon as it does not: a step cut below 1/2, or a decrement
 //     not falling 4× per step). The static feet's dual forces are the least-norm ones that
-//     balance the sliding feet. A right static set certifies to ~1e-15 in 1–3 steps.
+//     balance the sliding feet (for static feet at distinct points, whose internal force is
+//     free, a balancing choice inside the disks: fit_static_forces). A right static set
+//     certifies to ~1e-15 in 1–3 steps.
 //  4. Certificate: the dual candidate is made exactly balanced by the least-norm correction
 //     λ_k −= B_k (Σ B_jᵀB_j)⁺ Σ B_jᵀλ_j and scaled into the disks; its gap is then a true bound
 //     (up to rounding) whatever the quality of y. Converged ⇔ gap ≤ tol.
-// Cost: O(N) per step, 5–9 steps on random frames (more static feet → more steps); see
-// tests/bench/bench_friction.cpp.
+// Cost: O(N) per step, 5–9 steps on random frames (more static feet → more steps): about 10×
+// the viscous-Coulomb solve, see tests/bench/bench_friction.cpp.
 //
 // Non-uniqueness. At an optimum with dual λ, a direction e keeps y optimal iff B_k e ∥ λ_k for
 // sliding feet and for static feet on the disk's rim (with λ_kᵀ B_k e ≥ 0 there: the foot starts
