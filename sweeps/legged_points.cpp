@@ -1,8 +1,985 @@
-// Point functions of the multi-legged model (thesis ch. 3); see point_functions.hpp.
+// Point functions of the multi-legged model (thesis ch. 3); see point_functions.hpp. Each one's
+// keys are checked in its read_* function and its rows are described above its run_* function.
+//
+//   legged_1d            §3.1.2, Fig. 3.1: N feet on a line with equal loads and random speeds;
+//                        Coulomb friction gives −median, the viscous-Coulomb ansatz −mean
+//   legged_force_map     §3.1.2.4, Fig. 3.2: the total planar force over a grid of body
+//                        velocities (ω = 0) under both laws, and each law's balance
+//   legged_compare       §3.6.2: both laws' balances for legs on a circle with random foot
+//                        velocities of a given spread around a common one
+//   legged_support_path  §3.3, Figs. 3.3 and 3.4: the spring-support search path
+//   legged_eps_error     §3.6.2, Fig. 3.15: relative error of a viscous-type force against the
+//                        Coulomb force near the sliding velocity v = (|v|, 0)
+//
+// Robots are read from frame files (the DESIGN.md frame format, contact/frame_json.hpp) named
+// relative to the spec file. Forces at a prescribed velocity (force map, eps error) are evaluated
+// here from eqs. 3.13, 3.14 and 3.19 in body coordinates; balances come from the library solvers.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "contact/frame_json.hpp"
+#include "contact/robot.hpp"
+#include "contact/spring_support.hpp"
+#include "core/csv.hpp"
+#include "core/error.hpp"
+#include "friction/solvers.hpp"
 #include "sweeps/point_functions.hpp"
 
 namespace slipwalk::sweeps {
 
-std::vector<PointFunction> legged_point_functions() { return {}; }
+namespace {
+
+using core::InputError;
+const double kNaN = std::nan("");
+
+// --- reading a point ----------------------------------------------------------------------------
+
+/// Typed access to a point's inputs; rejects keys the point function does not take. (The
+/// inchworm functions have their own in point_functions.cpp; the messages read the same.)
+class Reader {
+ public:
+  Reader(const Point& p, std::string_view kind, const std::vector<std::string_view>& accepted)
+      : point_(p) {
+    for (const auto& [key, value] : p.values) {
+      if (std::find(accepted.begin(), accepted.end(), key) == accepted.end()) {
+        std::string message = "unknown key '" + key + "' for kind ";
+        message += kind;
+        message += "; expected one of ";
+        for (std::size_t i = 0; i < accepted.size(); ++i) {
+          message += i ? ", " : "";
+          message += accepted[i];
+        }
+        throw InputError(value.origin, message);
+      }
+    }
+  }
+
+  [[nodiscard]] bool has(std::string_view key) const { return point_.find(key) != nullptr; }
+
+  [[noreturn]] void fail(std::string_view key, const std::string& what) const {
+    const Value* v = point_.find(key);
+    throw InputError(v != nullptr ? v->origin : point_.source,
+                     std::string(key) + ": " + what + " (point " + std::to_string(point_.id) + ")");
+  }
+
+  [[nodiscard]] std::optional<double> number(std::string_view key) const {
+    const Value* v = point_.find(key);
+    if (v == nullptr) {
+      return std::nullopt;
+    }
+    if (!v->is_number()) {
+      fail(key, "expected a number, got " + v->repr());
+    }
+    return v->number();
+  }
+
+  /// A number, `fallback` if absent; fails unless lo < x (lo ≤ x if closed) and x ≤ hi.
+  [[nodiscard]] double number(std::string_view key, double fallback, double lo, double hi,
+                              bool closed_lo = false) const {
+    const double x = number(key).value_or(fallback);
+    if (!(closed_lo ? x >= lo : x > lo) || !(x <= hi)) {
+      fail(key, "must be in " + std::string(closed_lo ? "[" : "(") + core::format_double(lo) +
+                    ", " + core::format_double(hi) + "], got " + core::format_double(x));
+    }
+    return x;
+  }
+
+  [[nodiscard]] long long integer(std::string_view key, long long fallback, long long lo,
+                                  long long hi) const {
+    const auto v = number(key);
+    if (!v) {
+      return fallback;
+    }
+    if (*v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi)) {
+      fail(key, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                    ", got " + core::format_double(*v));
+    }
+    return static_cast<long long>(*v);
+  }
+
+  [[nodiscard]] std::optional<std::string> text(std::string_view key) const {
+    const Value* v = point_.find(key);
+    if (v == nullptr) {
+      return std::nullopt;
+    }
+    if (v->is_number()) {
+      fail(key, "expected a string, got " + v->repr());
+    }
+    return v->text();
+  }
+
+  /// One of `options` (the first is the default).
+  [[nodiscard]] std::string choice(std::string_view key,
+                                   const std::vector<std::string_view>& options) const {
+    const auto t = text(key);
+    if (!t) {
+      return std::string(options.front());
+    }
+    if (std::find(options.begin(), options.end(), *t) == options.end()) {
+      std::string list;
+      for (std::size_t i = 0; i < options.size(); ++i) {
+        list += (i ? ", \"" : "\"") + std::string(options[i]) + "\"";
+      }
+      fail(key, "expected one of " + list + ", got '" + *t + "'");
+    }
+    return *t;
+  }
+
+  [[nodiscard]] const Point& point() const { return point_; }
+
+ private:
+  const Point& point_;
+};
+
+/// The robot and frame of a frame file named by `key` (required), relative to the spec's folder.
+/// A file that is missing or malformed fails at the key, with the file's own message.
+contact::FrameInput read_robot(const Reader& r, std::string_view key, std::string& name) {
+  const auto file = r.text(key);
+  if (!file) {
+    r.fail(key, "required (a robot frame file, JSON, relative to the spec file)");
+  }
+  name = *file;
+  const std::filesystem::path path =
+      std::filesystem::path(r.point().source).parent_path() / std::filesystem::path(*file);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    r.fail(key, "cannot read the robot file " + path.string());
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return contact::parse_frame_json(text.str(), path.string());
+  } catch (const InputError& e) {
+    r.fail(key, std::string("bad robot file: ") + e.what());
+  }
+}
+
+// --- a deterministic random stream (the same numbers on every platform) -------------------------
+
+/// SplitMix64 (Steele, Lea & Flood 2014): seeds of (seed, trial) give independent streams. The
+/// standard library's distributions are implementation-defined, so they are written out here.
+class Random {
+ public:
+  Random(std::uint64_t seed, std::uint64_t trial) : state_(seed * 0x9E3779B97F4A7C15ULL) {
+    state_ ^= mix(trial + 0x632BE59BD9B4E019ULL);
+  }
+  /// Uniform in [0, 1), 53 bits.
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  /// Standard normal (Box–Muller; one draw per call).
+  double normal() {
+    const double u1 = 1.0 - uniform();  // (0, 1]
+    const double u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+  }
+  /// Exponential with mean 1.
+  double exponential() { return -std::log(1.0 - uniform()); }
+
+ private:
+  static std::uint64_t mix(std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+  std::uint64_t next() {
+    state_ += 0x9E3779B97F4A7C15ULL;
+    return mix(state_);
+  }
+  std::uint64_t state_;
+};
+
+// --- planar forces at a prescribed body velocity (eqs. 3.13, 3.14, 3.19) ------------------------
+
+enum class Law { kViscous, kCoulomb };
+
+struct PlanarSum {
+  Eigen::Vector2d F = Eigen::Vector2d::Zero();
+  double Mz = 0.0;
+};
+
+/// Σ F_k and Σ (q_k × F_k)_z over the feet in contact when the body moves at (v, ω) in the body
+/// frame: u_k = v + ω S q_k + q̇_k, G_k = I + w_k w_kᵀ, F_k = −μ_k F_z,k G_k u_k (viscous-Coulomb)
+/// or −μ_k F_z,k G_k u_k / √(u_kᵀ G_k u_k) (Coulomb; 0 for a foot with u_k = 0, the centre of its
+/// friction set, where the Coulomb force is set-valued).
+PlanarSum planar_forces(const contact::Robot& robot, const contact::Frame& f,
+                        const Eigen::Vector2d& v, double omega, Law law) {
+  PlanarSum sum;
+  for (int k = 0; k < f.legs(); ++k) {
+    if (f.contact[static_cast<std::size_t>(k)] == 0) {
+      continue;
+    }
+    const Eigen::Vector2d q = f.q.col(k).head<2>();
+    const Eigen::Vector2d u = v + omega * Eigen::Vector2d(-q(1), q(0)) + f.qdot.col(k).head<2>();
+    const Eigen::Vector2d w = robot.w.col(k);
+    const Eigen::Vector2d Gu = u + w * w.dot(u);
+    double scale = robot.mu(k) * f.Fz(k);
+    if (law == Law::kCoulomb) {
+      const double s = std::sqrt(u.dot(Gu));
+      scale = s > 0.0 ? scale / s : 0.0;
+    }
+    const Eigen::Vector2d F = -scale * Gu;
+    sum.F += F;
+    sum.Mz += q(0) * F(1) - q(1) * F(0);
+  }
+  return sum;
+}
+
+const char* law_name(Law law) { return law == Law::kViscous ? "viscous" : "coulomb"; }
+
+// --- legged_1d
+// ------------------------------------------------------------------------------------
+
+const std::vector<std::string_view> k1dKeys = {"N",     "seed",   "trials", "distribution",
+                                               "scale", "offset", "speeds"};
+
+struct OneDInputs {
+  long long N = 0;
+  long long seed = 0;
+  long long trials = 1;
+  std::string distribution = "uniform";
+  double scale = 1.0;
+  double offset = 0.0;
+  std::vector<double> speeds;  ///< explicit speeds (`speeds`), else drawn
+};
+
+/// "0.5, -1, 2" -> {0.5, −1, 2}; nullopt if any item is not a finite number.
+std::optional<std::vector<double>> parse_list(const std::string& s) {
+  std::vector<double> out;
+  std::size_t p = 0;
+  while (p <= s.size()) {
+    const std::size_t e = std::min(s.find(',', p), s.size());
+    std::string item = s.substr(p, e - p);
+    item.erase(0, item.find_first_not_of(" \t"));
+    item.erase(item.find_last_not_of(" \t") + 1);
+    std::size_t used = 0;
+    double x = 0.0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    if (used != item.size() || !std::isfinite(x)) {
+      return std::nullopt;
+    }
+    out.push_back(x);
+    p = e + 1;
+  }
+  return out;
+}
+
+OneDInputs read_1d(const Point& point) {
+  const Reader r(point, "legged_1d", k1dKeys);
+  OneDInputs in;
+  if (const auto speeds = r.text("speeds")) {
+    const auto list = parse_list(*speeds);
+    if (!list || list->empty()) {
+      r.fail("speeds",
+             "expected a comma-separated list of finite numbers (the feet's speeds "
+             "relative to the body), got '" +
+                 *speeds + "'");
+    }
+    in.speeds = *list;
+    for (auto key : {"seed", "trials", "distribution", "scale", "offset"}) {
+      if (r.has(key)) {
+        r.fail(key, "not used with explicit speeds");
+      }
+    }
+    in.N = static_cast<long long>(in.speeds.size());
+    if (r.has("N") && r.integer("N", 0, 1, 100000) != in.N) {
+      r.fail("N", "speeds has " + std::to_string(in.N) + " entries");
+    }
+    return in;
+  }
+  if (!r.has("N")) {
+    r.fail("N", "required (the number of feet), or give explicit speeds");
+  }
+  in.N = r.integer("N", 0, 1, 10000);
+  in.seed = r.integer("seed", 0, 0, 1LL << 53);
+  in.trials = r.integer("trials", 1, 1, 1000000);
+  in.distribution = r.choice("distribution", {"uniform", "normal", "exponential"});
+  in.scale = r.number("scale", 1.0, 0.0, 1e12);
+  in.offset = r.number("offset", 0.0, -1e12, 1e12, true);
+  return in;
+}
+
+/// The speeds of one trial: offset + scale·X with X uniform on [−1, 1], standard normal, or
+/// exponential with mean 1 (skewed: mean and median differ most).
+std::vector<double> draw_speeds(const OneDInputs& in, long long trial) {
+  if (!in.speeds.empty()) {
+    return in.speeds;
+  }
+  Random rng(static_cast<std::uint64_t>(in.seed), static_cast<std::uint64_t>(trial));
+  std::vector<double> v(static_cast<std::size_t>(in.N));
+  for (double& x : v) {
+    if (in.distribution == "uniform") {
+      x = in.offset + in.scale * (2.0 * rng.uniform() - 1.0);
+    } else if (in.distribution == "normal") {
+      x = in.offset + in.scale * rng.normal();
+    } else {
+      x = in.offset + in.scale * rng.exponential();
+    }
+  }
+  return v;
+}
+
+// Fig. 3.1 in the body frame of the library: the N feet lie on the body's x axis at
+// x_i = −1 … 1 (evenly spaced; one foot at 0), each with the same normal load Mg/N (set directly:
+// the 1-D example assumes equal loads), μ = 1, foot i sliding relative to the body at (v_i, 0).
+// The problem is mirror-symmetric about the x axis and the dissipation is strictly convex in
+// (v_y, ω) (at least two feet at distinct x slide), so both laws give v_y = ω = 0 and the 2-D
+// solvers answer the 1-D question.
+PointResult run_1d(const Point& point) {
+  const OneDInputs in = read_1d(point);
+  const int n = static_cast<int>(in.N);
+  const contact::Robot robot = contact::uniform_robot(n, 1.0, 1.0, 1.0);
+  contact::Frame frame(robot);
+  for (int i = 0; i < n; ++i) {
+    frame.q.col(i) = Eigen::Vector3d(n == 1 ? 0.0 : -1.0 + 2.0 * i / (n - 1), 0.0, -0.1);
+    frame.contact[static_cast<std::size_t>(i)] = 1;
+    frame.Fz(i) = robot.Mg / n;
+  }
+  PointResult out;
+  for (long long trial = 0; trial < in.trials; ++trial) {
+    std::vector<double> v = draw_speeds(in, trial);
+    for (int i = 0; i < n; ++i) {
+      frame.qdot.col(i) = Eigen::Vector3d(v[static_cast<std::size_t>(i)], 0.0, 0.0);
+    }
+    std::vector<double> s = v;
+    std::sort(s.begin(), s.end());
+    const std::size_t h = s.size() / 2;
+    const double median = s.size() % 2 == 1 ? s[h] : 0.5 * (s[h - 1] + s[h]);
+    double mean = 0.0;
+    for (double x : v) {
+      mean += x;
+    }
+    mean /= n;
+    double var = 0.0;
+    for (double x : v) {
+      var += (x - mean) * (x - mean);
+    }
+    const double sd = std::sqrt(var / n);
+    // Coulomb balance: half the feet slide each way; the body velocity is −(the median speed),
+    // for even N any value between minus the two middle speeds.
+    const double lo = -s[h];
+    const double hi = s.size() % 2 == 1 ? -s[h] : -s[h - 1];
+
+    friction::solve_viscous_coulomb(robot, frame);
+    const Eigen::Vector3d visc = frame.v_body;
+    const contact::FrictionSummary visc_summary = frame.friction;
+    friction::solve_coulomb(robot, frame);
+    const Eigen::Vector3d coul = frame.v_body;
+    const contact::FrictionSummary& cs = frame.friction;
+    const double tol = 1e-7 * std::max(s.back() - s.front(), std::abs(median) + 1e-300);
+    const bool in_interval = coul(0) >= lo - tol && coul(0) <= hi + tol;
+
+    std::string message = cs.message;
+    if (!visc_summary.message.empty()) {
+      message += (message.empty() ? "" : "; ") + std::string("viscous: ") + visc_summary.message;
+    }
+    out.rows.push_back(Row{point.id,
+                           static_cast<long long>(n),
+                           in.seed,
+                           trial,
+                           in.speeds.empty() ? in.distribution : std::string("given"),
+                           in.speeds.empty() ? in.scale : kNaN,
+                           in.speeds.empty() ? in.offset : kNaN,
+                           coul(0),
+                           visc(0),
+                           -median,
+                           -mean,
+                           lo,
+                           hi,
+                           static_cast<long long>(in_interval ? 1 : 0),
+                           static_cast<long long>(cs.unique ? 1 : 0),
+                           static_cast<long long>(cs.static_feet),
+                           coul(1),
+                           coul(2),
+                           visc(1),
+                           visc(2),
+                           sd,
+                           s.back() - s.front(),
+                           static_cast<long long>(cs.converged ? 1 : 0),
+                           static_cast<long long>(cs.iterations),
+                           cs.certificate,
+                           message});
+    if (!cs.converged && !out.failed) {
+      out.failed = true;
+      out.message =
+          "Coulomb solve did not converge (trial " + std::to_string(trial) + "): " + cs.message;
+    }
+  }
+  return out;
+}
+
+const std::vector<std::string> k1dColumns = {
+    "id",          "N",           "seed",      "trial",       "distribution", "scale",
+    "offset",      "v_coulomb",   "v_viscous", "neg_median",  "neg_mean",     "interval_lo",
+    "interval_hi", "in_interval", "unique",    "static_feet", "vy_coulomb",   "w_coulomb",
+    "vy_viscous",  "w_viscous",   "speed_sd",  "speed_range", "converged",    "iterations",
+    "certificate", "message"};
+
+// --- legged_compare ------------------------------------------------------------------------------
+
+const std::vector<std::string_view> kCompareKeys = {"N", "seed", "trials", "spread", "radius"};
+
+struct CompareInputs {
+  long long N = 6;
+  long long seed = 0;
+  long long trials = 1;
+  double spread = 0.2;
+  double radius = 0.3;
+};
+
+CompareInputs read_compare(const Point& point) {
+  const Reader r(point, "legged_compare", kCompareKeys);
+  CompareInputs in;
+  if (!r.has("N")) {
+    r.fail("N", "required (the number of legs)");
+  }
+  in.N = r.integer("N", 6, 3, 1000);
+  in.seed = r.integer("seed", 0, 0, 1LL << 53);
+  in.trials = r.integer("trials", 1, 1, 1000000);
+  in.spread = r.number("spread", 0.2, 0.0, 1e6, true);
+  in.radius = r.number("radius", 0.3, 0.0, 1e6);
+  return in;
+}
+
+const std::vector<std::string> kCompareColumns = {
+    "id",         "N",          "seed",        "trial",      "spread",    "vx_viscous",
+    "vy_viscous", "w_viscous",  "vx_coulomb",  "vy_coulomb", "w_coulomb", "diff",
+    "rel_diff",   "mean_speed", "static_feet", "unique",     "converged", "message"};
+
+// §3.1.2.4 and §3.6.2 beyond one example: N legs equally spaced on a circle of the given radius
+// (all at the same height: the spring support gives equal loads), every foot sliding backwards
+// relative to the body at 1 m/s plus a random planar velocity of standard deviation `spread`
+// m/s per component. Each trial solves both balances; diff = ‖(Δv_x, Δv_y, radius·Δω)‖ between
+// them (the largest difference of a foot's velocity at the rim), rel_diff = diff / the mean foot
+// speed ‖q̇_k‖.
+PointResult run_compare(const Point& point) {
+  const CompareInputs in = read_compare(point);
+  const int n = static_cast<int>(in.N);
+  const contact::Robot robot = contact::uniform_robot(n, 10.0, 1.0, 1.0);
+  contact::Frame frame(robot);
+  for (int k = 0; k < n; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / n;
+    frame.q.col(k) = Eigen::Vector3d(in.radius * std::cos(a), in.radius * std::sin(a), -0.1);
+  }
+  contact::spring_support(robot, frame);
+  PointResult out;
+  for (long long trial = 0; trial < in.trials; ++trial) {
+    Random rng(static_cast<std::uint64_t>(in.seed), static_cast<std::uint64_t>(trial));
+    double mean_speed = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double dx = rng.normal();
+      const double dy = rng.normal();
+      frame.qdot.col(k) = Eigen::Vector3d(-1.0 + in.spread * dx, in.spread * dy, 0.0);
+      mean_speed += frame.qdot.col(k).head<2>().norm() / n;
+    }
+    friction::solve_viscous_coulomb(robot, frame);
+    const Eigen::Vector3d visc = frame.v_body;
+    friction::solve_coulomb(robot, frame);
+    const Eigen::Vector3d coul = frame.v_body;
+    const contact::FrictionSummary& cs = frame.friction;
+    const Eigen::Vector3d d = visc - coul;
+    const double diff = std::sqrt(d(0) * d(0) + d(1) * d(1) + in.radius * in.radius * d(2) * d(2));
+    out.rows.push_back(Row{point.id, in.N, in.seed, trial, in.spread, visc(0), visc(1), visc(2),
+                           coul(0), coul(1), coul(2), diff, diff / mean_speed, mean_speed,
+                           static_cast<long long>(cs.static_feet),
+                           static_cast<long long>(cs.unique ? 1 : 0),
+                           static_cast<long long>(cs.converged ? 1 : 0), cs.message});
+    if (!cs.converged && !out.failed) {
+      out.failed = true;
+      out.message =
+          "Coulomb solve did not converge (trial " + std::to_string(trial) + "): " + cs.message;
+    }
+  }
+  return out;
+}
+
+// --- legged_force_map -------------------------------------------------------------------------
+
+const std::vector<std::string_view> kMapKeys = {"robot",  "n",     "vx_min",  "vx_max", "vy_min",
+                                                "vy_max", "eps_n", "eps_min", "eps_max"};
+
+struct MapInputs {
+  std::string robot_name;
+  std::optional<contact::FrameInput> robot;
+  long long n = 101;
+  std::optional<double> vx_min, vx_max, vy_min, vy_max;
+  long long eps_n = 0;
+  double eps_min = 1e-4;
+  double eps_max = 1e2;
+};
+
+MapInputs read_map(const Point& point) {
+  const Reader r(point, "legged_force_map", kMapKeys);
+  MapInputs in;
+  in.robot.emplace(read_robot(r, "robot", in.robot_name));
+  in.n = r.integer("n", 101, 2, 2001);
+  in.vx_min = r.number("vx_min");
+  in.vx_max = r.number("vx_max");
+  in.vy_min = r.number("vy_min");
+  in.vy_max = r.number("vy_max");
+  for (auto [a, b, ka, kb] : {std::tuple{in.vx_min, in.vx_max, "vx_min", "vx_max"},
+                              std::tuple{in.vy_min, in.vy_max, "vy_min", "vy_max"}}) {
+    if (a.has_value() != b.has_value()) {
+      r.fail(a ? kb : ka,
+             std::string("give both ") + ka + " and " + kb + " (or neither: automatic)");
+    }
+    if (a && !(std::isfinite(*a) && std::isfinite(*b) && *a < *b)) {
+      r.fail(kb, std::string("must exceed ") + ka);
+    }
+  }
+  in.eps_n = r.integer("eps_n", 0, 0, 1000);
+  in.eps_min = r.number("eps_min", 1e-4, 0.0, 1e12);
+  in.eps_max = r.number("eps_max", 1e2, 0.0, 1e12);
+  if (!(in.eps_max > in.eps_min)) {
+    r.fail("eps_max", "must exceed eps_min");
+  }
+  return in;
+}
+
+const std::vector<std::string> kMapColumns = {
+    "id",    "robot", "row",    "law",       "epsilon",    "foot",     "vx",     "vy",
+    "omega", "Fx",    "Fy",     "Mz",        "F_norm",     "qx",       "qy",     "qdx",
+    "qdy",   "Fz",    "unique", "converged", "iterations", "residual", "message"};
+
+/// Column positions of kMapColumns.
+namespace M {
+enum : std::size_t {
+  kId,
+  kRobot,
+  kRow,
+  kLaw,
+  kEpsilon,
+  kFoot,
+  kVx,
+  kVy,
+  kOmega,
+  kFx,
+  kFy,
+  kMz,
+  kFNorm,
+  kQx,
+  kQy,
+  kQdx,
+  kQdy,
+  kFz,
+  kUnique,
+  kConverged,
+  kIterations,
+  kResidual,
+  kMessage
+};
+}  // namespace M
+
+// Thesis Fig. 3.2: the robot's loads from the spring support (§3.3); then
+//  * one "foot" row per foot in contact: position, velocity relative to the body, load, and the
+//    body velocity (ω = 0) that puts it at rest (vx, vy = −q̇_xy: a point discontinuity of the
+//    Coulomb force map);
+//  * one "balance" row per law: the full force–moment balance (v_x, v_y, ω) from the library
+//    solvers, and with eps_n > 0 the ε-family of eq. 3.14 from eps_max down to eps_min;
+//  * n × n "grid" rows per law: Σ F and Σ M_z at (v_x, v_y, ω = 0), F_norm = ‖Σ F‖.
+// The grid spans the feet's rest velocities and the balances, 25 % wider, unless given.
+PointResult run_map(const Point& point) {
+  MapInputs in = read_map(point);
+  const contact::Robot& robot = in.robot->robot;
+  contact::Frame& frame = in.robot->frame;
+  PointResult out;
+  const auto row = [&](const char* kind, const std::string& law, double eps, long long foot) {
+    Row r{point.id, in.robot_name, std::string(kind), law, eps, foot};
+    r.resize(kMapColumns.size(), kNaN);
+    r[M::kMessage] = std::string();
+    return r;
+  };
+  contact::spring_support(robot, frame);
+  using Status = contact::SupportSummary::Status;
+  if (frame.support.status == Status::kUnsupported ||
+      frame.support.status == Status::kIterationLimit) {
+    out.failed = true;
+    out.message = std::string("spring support: ") + contact::status_name(frame.support.status) +
+                  (frame.support.message.empty() ? "" : ": " + frame.support.message);
+    Row r = row("support", "", kNaN, -1);
+    r.back() = out.message;
+    out.rows.push_back(std::move(r));
+    return out;
+  }
+  double lo_x = 0.0, hi_x = 0.0, lo_y = 0.0, hi_y = 0.0;
+  bool first = true;
+  const auto extend = [&](double x, double y) {
+    lo_x = first ? x : std::min(lo_x, x);
+    hi_x = first ? x : std::max(hi_x, x);
+    lo_y = first ? y : std::min(lo_y, y);
+    hi_y = first ? y : std::max(hi_y, y);
+    first = false;
+  };
+  for (int k = 0; k < frame.legs(); ++k) {
+    if (frame.contact[static_cast<std::size_t>(k)] == 0) {
+      continue;
+    }
+    Row r = row("foot", "", kNaN, k);
+    r[M::kVx] = -frame.qdot(0, k);
+    r[M::kVy] = -frame.qdot(1, k);
+    r[M::kQx] = frame.q(0, k);
+    r[M::kQy] = frame.q(1, k);
+    r[M::kQdx] = frame.qdot(0, k);
+    r[M::kQdy] = frame.qdot(1, k);
+    r[M::kFz] = frame.Fz(k);
+    extend(-frame.qdot(0, k), -frame.qdot(1, k));
+    out.rows.push_back(std::move(r));
+  }
+  const auto balance = [&](const std::string& law, double eps) {
+    if (law == "viscous") {
+      friction::solve_viscous_coulomb(robot, frame);
+    } else if (law == "coulomb") {
+      friction::solve_coulomb(robot, frame);
+    } else {
+      friction::solve_epsilon(robot, frame, eps);
+    }
+    const Eigen::Vector3d x = frame.v_body;
+    const PlanarSum sum = planar_forces(robot, frame, x.head<2>(), x(2),
+                                        law == "viscous" ? Law::kViscous : Law::kCoulomb);
+    Row r = row("balance", law, eps, -1);
+    r[M::kVx] = x(0);
+    r[M::kVy] = x(1);
+    r[M::kOmega] = x(2);
+    r[M::kFx] = sum.F(0);
+    r[M::kFy] = sum.F(1);
+    r[M::kMz] = sum.Mz;
+    r[M::kFNorm] = sum.F.norm();
+    r[M::kUnique] = static_cast<long long>(frame.friction.unique ? 1 : 0);
+    r[M::kConverged] = static_cast<long long>(frame.friction.converged ? 1 : 0);
+    r[M::kIterations] = static_cast<long long>(frame.friction.iterations);
+    r[M::kResidual] = frame.friction.residual;
+    r[M::kMessage] = frame.friction.message;
+    if (!frame.friction.converged && !out.failed) {
+      out.failed = true;
+      out.message = law + " balance did not converge: " + frame.friction.message;
+    }
+    if (law != "epsilon") {
+      extend(x(0), x(1));
+    }
+    out.rows.push_back(std::move(r));
+  };
+  balance("viscous", kNaN);
+  balance("coulomb", kNaN);
+  for (long long i = 0; i < in.eps_n; ++i) {
+    const double t =
+        in.eps_n == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(in.eps_n - 1);
+    balance("epsilon", in.eps_max * std::pow(in.eps_min / in.eps_max, t));
+  }
+  // The grid: given, or the box around the rest velocities and balances, 25 % wider each way.
+  const double mx = 0.25 * std::max(hi_x - lo_x, 1e-3);
+  const double my = 0.25 * std::max(hi_y - lo_y, 1e-3);
+  const double x0 = in.vx_min.value_or(lo_x - mx), x1 = in.vx_max.value_or(hi_x + mx);
+  const double y0 = in.vy_min.value_or(lo_y - my), y1 = in.vy_max.value_or(hi_y + my);
+  const std::vector<double> xs = linspace(x0, x1, in.n);
+  const std::vector<double> ys = linspace(y0, y1, in.n);
+  for (Law law : {Law::kCoulomb, Law::kViscous}) {
+    for (double y : ys) {
+      for (double x : xs) {
+        const PlanarSum sum = planar_forces(robot, frame, Eigen::Vector2d(x, y), 0.0, law);
+        Row r = row("grid", law_name(law), kNaN, -1);
+        r[M::kVx] = x;
+        r[M::kVy] = y;
+        r[M::kOmega] = 0.0;
+        r[M::kFx] = sum.F(0);
+        r[M::kFy] = sum.F(1);
+        r[M::kMz] = sum.Mz;
+        r[M::kFNorm] = sum.F.norm();
+        out.rows.push_back(std::move(r));
+      }
+    }
+  }
+  return out;
+}
+
+// --- legged_support_path ------------------------------------------------------------------------
+
+const std::vector<std::string_view> kPathKeys = {"robot"};
+
+const std::vector<std::string> kPathColumns = {
+    "id",       "robot",   "row",  "step",         "foot",        "alpha",    "beta",   "z",
+    "contacts", "changed", "mask", "target_alpha", "target_beta", "target_z", "qx",     "qy",
+    "qz",       "K",       "Fz",   "status",       "iterations",  "residual", "message"};
+
+/// Column positions of kPathColumns.
+namespace P {
+enum : std::size_t {
+  kId,
+  kRobot,
+  kRow,
+  kStep,
+  kFoot,
+  kAlpha,
+  kBeta,
+  kZ,
+  kContacts,
+  kChanged,
+  kMask,
+  kTargetAlpha,
+  kTargetBeta,
+  kTargetZ,
+  kQx,
+  kQy,
+  kQz,
+  kK,
+  kFz,
+  kStatus,
+  kIterations,
+  kResidual,
+  kMessage
+};
+}  // namespace P
+
+/// The balance of a fixed contact set (eq. 3.9, as the minimizer of the quadratic potential of
+/// contact/spring_support.hpp): Σ_{k∈C} K_k h_k a_k + Mg e_z = 0 with a_k = (q_y, −q_x, 1) in
+/// (α, β, z). Least-norm in the directions no foot of the robot can feel (α for a robot whose feet
+/// all have q_y = 0). Empty when the set cannot balance the moment (fewer independent contacts
+/// than the robot's geometry has: the search tilts instead, eqs. 3.11, 3.12).
+std::optional<Eigen::Vector3d> contact_set_balance(const contact::Robot& robot,
+                                                   const contact::Frame& f,
+                                                   const std::string& mask) {
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d H_all = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs(0.0, 0.0, -robot.Mg);
+  for (int k = 0; k < f.legs(); ++k) {
+    const Eigen::Vector3d a(f.q(1, k), -f.q(0, k), 1.0);
+    H_all += a * a.transpose();
+    if (mask[static_cast<std::size_t>(k)] == 'C') {
+      H += robot.K(k) * a * a.transpose();
+      rhs -= robot.K(k) * f.q(2, k) * a;
+    }
+  }
+  Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix3d> all(H_all);
+  all.setThreshold(1e-12);
+  Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix3d> cod(H);
+  cod.setThreshold(1e-12);
+  if (cod.rank() < all.rank()) {
+    return std::nullopt;
+  }
+  return cod.solve(rhs);
+}
+
+PointResult run_path(const Point& point) {
+  const Reader r(point, "legged_support_path", kPathKeys);
+  std::string name;
+  contact::FrameInput in = read_robot(r, "robot", name);
+  const contact::Robot& robot = in.robot;
+  contact::Frame& f = in.frame;
+  std::vector<contact::SupportStep> path;
+  contact::SupportOptions options;
+  options.path = &path;
+  contact::spring_support(robot, f, options);
+
+  PointResult out;
+  const auto row = [&](const char* kind, long long step, long long foot) {
+    Row x{point.id, name, std::string(kind), step, foot};
+    x.resize(kPathColumns.size(), kNaN);
+    x[P::kMask] = std::string();
+    x[P::kStatus] = std::string();
+    x[P::kMessage] = std::string();
+    return x;
+  };
+  const int n = f.legs();
+  for (int j = 0; j < n; ++j) {
+    Row x = row("foot", -1, j);
+    x[P::kQx] = f.q(0, j);
+    x[P::kQy] = f.q(1, j);
+    x[P::kQz] = f.q(2, j);
+    x[P::kK] = robot.K(j);
+    x[P::kFz] = f.Fz(j);
+    out.rows.push_back(std::move(x));
+  }
+  // The contact set along the path ("C" in contact, "-" in the air, one character per leg): the
+  // lowest feet at the start, then each recorded change toggles its leg (a state on a contact
+  // plane has that foot at h = 0 exactly).
+  std::string mask(static_cast<std::size_t>(n), '-');
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const contact::SupportStep& s = path[i];
+    if (i == 0) {
+      std::vector<std::pair<double, int>> h;
+      for (int j = 0; j < n; ++j) {
+        h.emplace_back(contact::foot_height(f, j, s.alpha, s.beta, s.z), j);
+      }
+      std::sort(h.begin(), h.end());
+      for (int k = 0; k < s.contacts && k < n; ++k) {
+        mask[static_cast<std::size_t>(h[static_cast<std::size_t>(k)].second)] = 'C';
+      }
+    } else if (s.changed >= 0 && s.changed < n) {
+      char& c = mask[static_cast<std::size_t>(s.changed)];
+      c = c == 'C' ? '-' : 'C';
+    }
+    Row x = row("step", static_cast<long long>(i), -1);
+    x[P::kAlpha] = s.alpha;
+    x[P::kBeta] = s.beta;
+    x[P::kZ] = s.z;
+    x[P::kContacts] = static_cast<long long>(s.contacts);
+    x[P::kChanged] = static_cast<long long>(s.changed);
+    x[P::kMask] = mask;
+    if (const auto t = contact_set_balance(robot, f, mask)) {
+      x[P::kTargetAlpha] = (*t)(0);
+      x[P::kTargetBeta] = (*t)(1);
+      x[P::kTargetZ] = (*t)(2);
+    }
+    out.rows.push_back(std::move(x));
+  }
+  Row x = row("result", static_cast<long long>(path.size()), -1);
+  x[P::kAlpha] = f.alpha;
+  x[P::kBeta] = f.beta;
+  x[P::kZ] = f.z;
+  int contacts = 0;
+  std::string final_mask;
+  for (int j = 0; j < n; ++j) {
+    contacts += f.contact[static_cast<std::size_t>(j)] != 0 ? 1 : 0;
+    final_mask += f.contact[static_cast<std::size_t>(j)] != 0 ? 'C' : '-';
+  }
+  x[P::kContacts] = static_cast<long long>(contacts);
+  x[P::kMask] = final_mask;
+  x[P::kStatus] = std::string(contact::status_name(f.support.status));
+  x[P::kIterations] = static_cast<long long>(f.support.iterations);
+  x[P::kResidual] = f.support.residual;
+  x[P::kMessage] = f.support.message;
+  out.rows.push_back(std::move(x));
+  using Status = contact::SupportSummary::Status;
+  if (f.support.status == Status::kIterationLimit || f.support.status == Status::kUnsupported) {
+    out.failed = true;
+    out.message = std::string("spring support: ") + contact::status_name(f.support.status) +
+                  (f.support.message.empty() ? "" : ": " + f.support.message);
+  }
+  return out;
+}
+
+// --- legged_eps_error
+// -----------------------------------------------------------------------------
+
+const std::vector<std::string_view> kEpsKeys = {"model", "epsilon", "speed", "shape",
+                                                "range", "n",       "angles"};
+
+struct EpsInputs {
+  std::string model = "viscous";
+  double epsilon = kNaN;
+  double speed = 1.0;
+  std::string shape = "grid";
+  double range = 0.3;
+  long long n = 121;
+  long long angles = 360;
+};
+
+EpsInputs read_eps(const Point& point) {
+  const Reader r(point, "legged_eps_error", kEpsKeys);
+  EpsInputs in;
+  in.model = r.choice("model", {"viscous", "tangent", "epsilon"});
+  if (in.model == "epsilon") {
+    if (!r.has("epsilon")) {
+      r.fail("epsilon", "required with model = \"epsilon\" (eq. 3.14's ε, m/s)");
+    }
+    in.epsilon = r.number("epsilon", 1.0, 0.0, 1e12);
+  } else if (r.has("epsilon")) {
+    r.fail("epsilon", "only used with model = \"epsilon\"");
+  }
+  in.speed = r.number("speed", 1.0, 0.0, 1e12);
+  in.shape = r.choice("shape", {"grid", "polar"});
+  in.range = r.number("range", 0.3, 0.0, 0.99);
+  in.n = r.integer("n", in.shape == "grid" ? 121 : 41, 2, 4001);
+  if (r.has("angles") && in.shape != "polar") {
+    r.fail("angles", "only used with shape = \"polar\"");
+  }
+  in.angles = r.integer("angles", 360, 4, 100000);
+  return in;
+}
+
+const std::vector<std::string> kEpsColumns = {"id",  "model", "epsilon", "speed", "shape",
+                                              "dvx", "dvy",   "dv_rel",  "angle", "rel_error"};
+
+// Thesis §3.6.2, Fig. 3.15: one foot with μ F_z = 1 slides at v = (speed, 0) + δv. The Coulomb
+// force is F_C = −u/|u|. The models, each equal to F_C at δv = 0 (calibrated at v):
+//   viscous  the viscous-Coulomb ansatz, F = −u/|v| (linear in u; eq. 3.14 with ε → ∞, scaled)
+//   tangent  the Coulomb force linearized at v: F = −v/|v| − (I − v̂v̂ᵀ) δv/|v| (affine)
+//   epsilon  eq. 3.14: F = −u (ε + |u|)/(ε + |u|²), divided by its value factor at v
+// rel_error = |F − F_C| / |F_C|. Grid: δv/|v| over [−range, range]², n × n. Polar: |δv|/|v| =
+// range·i/(n − 1), i = 0 … n − 1, at `angles` directions.
+PointResult run_eps(const Point& point) {
+  const EpsInputs in = read_eps(point);
+  const double v0 = in.speed;
+  const auto phi = [&](double s) { return (in.epsilon + s) / (in.epsilon + s * s); };
+  const double calib = in.model == "epsilon" ? 1.0 / (phi(v0) * v0) : 1.0 / v0;
+  PointResult out;
+  const auto emit = [&](double dx, double dy, double angle) {
+    const Eigen::Vector2d u(v0 + dx, dy);
+    const double s = u.norm();
+    const Eigen::Vector2d Fc = s > 0.0 ? Eigen::Vector2d(-u / s) : Eigen::Vector2d::Zero();
+    Eigen::Vector2d Fm;
+    if (in.model == "viscous") {
+      Fm = -calib * u;
+    } else if (in.model == "tangent") {
+      Fm = Eigen::Vector2d(-1.0, -dy / v0);
+    } else {
+      Fm = -calib * phi(s) * u;
+    }
+    const double err = s > 0.0 ? (Fm - Fc).norm() / Fc.norm() : kNaN;
+    out.rows.push_back(Row{point.id, in.model, in.epsilon, v0, in.shape, dx / v0, dy / v0,
+                           std::hypot(dx, dy) / v0, angle, err});
+  };
+  if (in.shape == "grid") {
+    const std::vector<double> g = linspace(-in.range, in.range, in.n);
+    for (double y : g) {
+      for (double x : g) {
+        emit(x * v0, y * v0, std::atan2(y, x));
+      }
+    }
+  } else {
+    for (long long i = 0; i < in.n; ++i) {
+      const double rad = in.range * static_cast<double>(i) / static_cast<double>(in.n - 1);
+      for (long long j = 0; j < in.angles; ++j) {
+        const double a =
+            2.0 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(in.angles);
+        emit(rad * v0 * std::cos(a), rad * v0 * std::sin(a), a);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<PointFunction> legged_point_functions() {
+  return {
+      {"legged_1d",
+       "Fig. 3.1: N feet on a line, equal loads, random speeds: Coulomb vs viscous-Coulomb body "
+       "velocity against the median and mean (one row per trial)",
+       k1dColumns, [](const Point& p) { (void)read_1d(p); }, run_1d},
+      {"legged_compare",
+       "§3.6.2: viscous-Coulomb vs Coulomb balance of N legs on a circle with random foot "
+       "velocities around (−1, 0) (one row per trial)",
+       kCompareColumns, [](const Point& p) { (void)read_compare(p); }, run_compare},
+      {"legged_force_map",
+       "Fig. 3.2: total planar force over a (v_x, v_y) grid at ω = 0 under Coulomb and "
+       "viscous-Coulomb friction, the feet's rest velocities and each law's balance",
+       kMapColumns, [](const Point& p) { (void)read_map(p); }, run_map},
+      {"legged_support_path",
+       "Figs. 3.3, 3.4: the spring-support search path in (α, β, z) with its contact sets",
+       kPathColumns,
+       [](const Point& p) {
+         const Reader r(p, "legged_support_path", kPathKeys);
+         std::string name;
+         (void)read_robot(r, "robot", name);
+       },
+       run_path},
+      {"legged_eps_error",
+       "Fig. 3.15: relative error of viscous-type friction against Coulomb friction near v = "
+       "(|v|, 0) (one row per δv)",
+       kEpsColumns, [](const Point& p) { (void)read_eps(p); }, run_eps},
+  };
+}
 
 }  // namespace slipwalk::sweeps
