@@ -69,6 +69,12 @@ VERDICT_CLASS = {
     "needs data we do not have": "nodata",
     "not measured": "bad",
 }
+# The cost-of-accuracy study (studies/cost_of_accuracy, issue 4) has a page of its own,
+# cost_of_accuracy.html: its script writes the page's body, the builder wraps it.
+SCRIPTS.append("cost_of_accuracy")
+SCRIPT_STUDY["cost_of_accuracy"] = "cost_of_accuracy"
+STUDIES.append("cost_of_accuracy")
+COST_PAGE = "cost_of_accuracy.html"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -427,7 +433,7 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
 <style>{CSS}</style></head><body>
 <header><h1>slipwalk — reproducing <i>Efficient Modeling of Multi-legged Locomotion with Slipping</i>{' — quick run' if quick else ''}</h1>
 <div class="sub">Chapter 2: the inchworm crawling model (§2.1–2.5); chapter 3: the multi-legged model (§3.1–3.4, §3.6). Every figure from data, every number from a run; verdicts computed from the claims ledger <code>data/thesis/claims.toml</code>.</div></header>
-<nav><a href="#ch2">Chapter 2</a><a href="#ch2-5">§2.5 realistic swap</a><a href="#ch3">Chapter 3</a><a href="#ledger">Claims ledger</a><a href="#performance">Performance</a><a href="#stability">Stability</a><a href="#provenance">Provenance</a></nav>
+<nav><a href="#ch2">Chapter 2</a><a href="#ch2-5">§2.5 realistic swap</a><a href="#ch3">Chapter 3</a><a href="#ledger">Claims ledger</a><a href="#performance">Performance</a><a href="#stability">Stability</a><a href="#provenance">Provenance</a><a href="cost_of_accuracy.html">Cost of accuracy</a></nav>
 <main>
 {quick_banner}
 <section id="ch2"><h2>Chapter 2 — inchworm crawling model</h2>
@@ -477,7 +483,9 @@ computed by the scripts from the data; the verdict is computed from the rule in 
 <div class="text"><p>Relative error against the closed form vs wall time and vs right-hand-side
 evaluations, each method over its tolerances, at F = 45 N, μ = 1 (fast convergence) and
 F = 73.575 N, μ = 0.05 (slowest convergence of the range). The table gives the cheapest run of each
-method that reaches the target error.</p>{perf_table}</div></div></section>
+method that reaches the target error. Every integrator over ten decades of tolerance, both models,
+the fixed-step method without event location and the three error sources separated: the
+<a href="cost_of_accuracy.html">cost of accuracy</a> page.</p>{perf_table}</div></div></section>
 <section id="stability"><h2>Stability — hard cases</h2>
 <div class="fig wide"><img src="stability.png" alt="hard cases">
 <div class="text"><p>Each hard case run by every method; the closed form ("exact") is the reference.
@@ -490,6 +498,30 @@ A method that is not built in this configuration is listed as such.</p>{stab_tab
 
 
 # ---------------------------------------------------------------------------------------------
+
+
+def cost_page(staging: Path, quick: bool) -> str:
+    """cost_of_accuracy.html: the body cost_of_accuracy.py wrote, in the report's frame."""
+    body_file = staging / "cost_of_accuracy_body.html"
+    body = (body_file.read_text() if body_file.is_file() else
+            "<p class='bad'>Not built: the data folder <code>cost_of_accuracy</code> is missing "
+            "(run <code>slipwalk reproduce cost_of_accuracy</code>).</p>")
+    quick_banner = ("<div class='quick'>Quick run: one repeat and a few tolerances per method; "
+                    "timings and tables are not those of the full study.</div>") if quick else ""
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<title>slipwalk — cost of accuracy{' (quick run)' if quick else ''}</title>
+<style>{CSS}</style></head><body>
+<header><h1>slipwalk — cost of accuracy{' — quick run' if quick else ''}</h1>
+<div class="sub">What each integrator of the hybrid layer costs to reach a given error in the
+inchworm's steady speed, and where the error comes from. From <code>studies/cost_of_accuracy/</code>
+and <code>reports/cost_of_accuracy.py</code>.</div></header>
+<nav><a href="index.html">Report index</a><a href="#coa-wp">Work–precision</a><a href="#coa-sources">Error sources</a><a href="#coa-pick">Which method</a><a href="index.html#performance">Performance</a><a href="index.html#provenance">Provenance</a></nav>
+<main>
+{quick_banner}
+{body}
+</main></body></html>
+"""
 
 
 def main() -> int:
@@ -549,6 +581,7 @@ def main() -> int:
             print(f"build_report.py: error: {args.claims}: {e}", file=sys.stderr)
             return 2
         page = build_html(ledger, results, values, staging, args.data, times, args.quick)
+        c.atomic_write_text(staging / COST_PAGE, cost_page(staging, args.quick))
         # Values of skipped scripts are missing by design (their warning above says why).
         skipped = set(SCRIPTS) - set(runnable)
         unmeasured = sorted({k for k in values.missing if k.partition(".")[0] not in skipped})

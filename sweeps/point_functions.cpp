@@ -232,6 +232,42 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
     }
   }
   in.opt.max_strokes = r.integer("max_strokes", in.opt.max_strokes, 8, 1'000'000'000LL);
+  if (const auto target = r.number("target")) {
+    if (!(*target > 0.0 && *target < 1.0)) {
+      r.fail("target", "must be in (0, 1), got " + core::format_double(*target));
+    }
+    in.opt.target = *target;
+  }
+  if (const auto event_tol = r.number("event_tol")) {
+    if (!(*event_tol >= 0.0 && *event_tol < 1.0)) {
+      r.fail("event_tol",
+             "must be in [0, 1) s (0: automatic), got " + core::format_double(*event_tol));
+    }
+    in.opt.event_tol = *event_tol;
+  }
+  if (const auto h = r.number("h")) {
+    if (in.method != Method::kFixedRk4) {
+      r.fail("h", "only used with method = \"fixed_rk4\" (the fixed step in s)");
+    }
+    if (!(*h > 0.0 && *h < 1.0)) {
+      r.fail("h", "the fixed step must be in (0, 1) s, got " + core::format_double(*h));
+    }
+    in.opt.step = *h;
+  }
+  in.opt.max_steps = r.integer("max_steps", 0, 0, 1'000'000'000'000LL);
+  if (const auto times = r.text("event_times")) {
+    if (*times == "exact") {
+      if (!inchworm::is_simulation(in.method)) {
+        r.fail("event_times", "only used with a simulation method");
+      }
+      in.opt.exact_event_times = true;
+    } else if (*times != "located") {
+      r.fail("event_times",
+             "expected \"located\" (the method's own) or \"exact\" (the exact "
+             "event times: integration error only), got '" +
+                 *times + "'");
+    }
+  }
   return in;
 }
 
@@ -245,7 +281,8 @@ double f_frac_of(const InchwormInputs& in) {
 const std::vector<std::string_view> kVssKeys =
     keys({kParamKeys,
           kForceKeys,
-          {"model", "alpha", "method", "rtol", "stop", "estimator", "max_strokes", "repeats"}});
+          {"model", "alpha", "method", "rtol", "stop", "estimator", "max_strokes", "repeats",
+           "target", "event_tol", "h", "max_steps", "event_times"}});
 
 /// The swap model of a point (`model`: "instant" | "dm") and the dm model's `alpha`, set
 /// before the other parameters are validated.
@@ -288,13 +325,21 @@ PointResult run_vss(const Point& point) {
   const auto [in, repeats] = read_vss(point);
   inchworm::VssResult s;
   std::vector<double> times;
+  std::vector<double> cpu_times;
   for (long long k = 0; k < repeats; ++k) {
     s = inchworm::solve_vss(in.p, in.method, in.opt);
     times.push_back(s.wall_s);
+    cpu_times.push_back(s.cpu_s);
+    if (!s.converged) {
+      break;  // a failed solve is not timed again
+    }
   }
-  std::sort(times.begin(), times.end());
-  s.wall_s = times.size() % 2 == 1 ? times[times.size() / 2]
-                                   : 0.5 * (times[times.size() / 2 - 1] + times[times.size() / 2]);
+  const auto median = [](std::vector<double>& v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 == 1 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  };
+  s.wall_s = median(times);
+  s.cpu_s = median(cpu_times);
   // A solve that never produced a number reports NaN rather than zeros.
   const bool nothing = !s.converged && inchworm::is_simulation(in.method) && s.strokes == 0;
   const bool closed_form_failed = !s.converged && !inchworm::is_simulation(in.method);
@@ -328,7 +373,15 @@ PointResult run_vss(const Point& point) {
       s.message,
       std::string(in.p.model == inchworm::SwapModel::kMass ? "dm" : "instant"),
       in.p.model == inchworm::SwapModel::kMass ? in.p.alpha : nan,
-      static_cast<long long>(s.swap_stopped ? 1 : 0)};
+      static_cast<long long>(s.swap_stopped ? 1 : 0),
+      s.cpu_s,
+      s.stats.guard_evals,
+      s.stats.segments,
+      inchworm::is_simulation(in.method) ? (in.opt.target > 0.0 ? in.opt.target : in.opt.rtol)
+                                         : nan,
+      in.opt.event_tol,
+      in.method == Method::kFixedRk4 ? inchworm::backend_options(in.opt).step : nan,
+      std::string(in.opt.exact_event_times ? "exact" : "located")};
   PointResult out;
   out.rows.push_back(std::move(row));
   out.failed = !s.converged;
@@ -405,13 +458,15 @@ const std::vector<PointFunction>& registry() {
       {"inchworm_vss",
        "steady-state CoM speed of the inchworm (instant swap or moving dm) by any method (one row "
        "per point)",
-       {"id",          "mu",          "mu_s",      "F",
-        "f_tilde",     "F_frac",      "method",    "rtol",
-        "stop",        "estimator",   "v_ss",      "period",
-        "c0",          "regime",      "est_error", "last_difference",
-        "contraction", "strokes",     "converged", "steps",
-        "rhs_evals",   "wall_s",      "message",   "model",
-        "alpha",       "swap_stopped"},
+       {"id",          "mu",           "mu_s",      "F",
+        "f_tilde",     "F_frac",       "method",    "rtol",
+        "stop",        "estimator",    "v_ss",      "period",
+        "c0",          "regime",       "est_error", "last_difference",
+        "contraction", "strokes",      "converged", "steps",
+        "rhs_evals",   "wall_s",       "message",   "model",
+        "alpha",       "swap_stopped", "cpu_s",     "guard_evals",
+        "events",      "target",       "event_tol", "h",
+        "event_times"},
        [](const Point& p) { (void)read_vss(p); },
        run_vss},
       {"inchworm_convergence",

@@ -66,9 +66,18 @@ std::string format_cell(const Cell& cell) {
   return out.str().substr(1);  // drop the header's newline
 }
 
-std::string format_rows(const PointResult& r, std::size_t columns, std::ptrdiff_t wall_column,
-                        bool timing) {
+/// The columns that hold timings (wall_s, cpu_s): written as 0 when timing is off.
+std::vector<bool> timing_columns(const std::vector<std::string>& columns) {
+  std::vector<bool> out(columns.size(), false);
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    out[i] = columns[i] == "wall_s" || columns[i] == "cpu_s";
+  }
+  return out;
+}
+
+std::string format_rows(const PointResult& r, const std::vector<bool>& timing_column, bool timing) {
   std::string out;
+  const std::size_t columns = timing_column.size();
   for (const Row& row : r.rows) {
     if (row.size() != columns) {
       throw std::logic_error("point function returned " + std::to_string(row.size()) +
@@ -76,8 +85,7 @@ std::string format_rows(const PointResult& r, std::size_t columns, std::ptrdiff_
     }
     for (std::size_t i = 0; i < row.size(); ++i) {
       out += i ? "," : "";
-      out += static_cast<std::ptrdiff_t>(i) == wall_column && !timing ? std::string("0")
-                                                                      : format_cell(row[i]);
+      out += timing_column[i] && !timing ? std::string("0") : format_cell(row[i]);
     }
     out += '\n';
   }
@@ -208,9 +216,7 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
   const auto n_points = static_cast<long long>(sweep.points.size());
   const std::string header = join(fn.columns);
   const std::string print = fingerprint(sweep);
-  const auto wall_it = std::find(fn.columns.begin(), fn.columns.end(), "wall_s");
-  const std::ptrdiff_t wall_column =
-      wall_it == fn.columns.end() ? -1 : wall_it - fn.columns.begin();
+  const std::vector<bool> timing_column = timing_columns(fn.columns);
   const std::string label = "[" + spec.study + "/" + spec.name + "] ";
 
   RunSummary summary;
@@ -266,7 +272,7 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
         Finished f;
         try {
           const PointResult r = fn.run(point);
-          f.rows = format_rows(r, fn.columns.size(), wall_column, options.timing);
+          f.rows = format_rows(r, timing_column, options.timing);
           f.failed = r.failed;
           f.message = one_line(r.message);
         } catch (const std::exception& e) {

@@ -18,7 +18,7 @@ struct RunOptions {
   std::filesystem::path data_dir = "data";  ///< outputs go to <data_dir>/<study>/<name>.*
   unsigned jobs = 0;                        ///< threads; 0 = std::thread::hardware_concurrency()
   bool resume = false;  ///< keep the points finished in <name>.partial.csv (else discard it)
-  bool timing = true;   ///< false: every wall_s cell is written as 0 (byte-identical reruns)
+  bool timing = true;   ///< false: wall_s and cpu_s cells are written as 0 (identical reruns)
   /// Stop after computing this many points in this run (< 0: no limit), leaving the partial
   /// file for --resume: how the tests interrupt a sweep.
   long long max_points = -1;

@@ -2,10 +2,13 @@
 
 #include <gsl/gsl_version.h>
 #include <sundials/sundials_config.h>
+#include <sys/utsname.h>
 
 #include <Eigen/Core>
 #include <boost/version.hpp>
+#include <fstream>
 #include <string>
+#include <thread>
 
 #ifndef SLIPWALK_GIT_COMMIT
 #define SLIPWALK_GIT_COMMIT "unknown"
@@ -18,6 +21,37 @@
 #endif
 
 namespace slipwalk::core {
+
+nlohmann::json machine_description() {
+  std::string cpu = "unknown";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      const std::size_t colon = line.find(':');
+      if (colon != std::string::npos) {
+        cpu = line.substr(line.find_first_not_of(" \t", colon + 1));
+      }
+      break;
+    }
+  }
+  std::string os = "unknown";
+  utsname u{};
+  if (uname(&u) == 0) {
+    os = std::string(u.sysname) + " " + u.release;
+  }
+  // How busy the machine was when the run started: timings taken under load are noisier.
+  double load = -1.0;
+  std::ifstream loadavg("/proc/loadavg");
+  if (!(loadavg >> load)) {
+    load = -1.0;
+  }
+  nlohmann::json out = {
+      {"cpu", cpu}, {"logical_cores", std::thread::hardware_concurrency()}, {"os", os}};
+  if (load >= 0.0) {
+    out["load_average_1min"] = load;
+  }
+  return out;
+}
 
 nlohmann::json build_provenance() {
   return {
@@ -32,6 +66,7 @@ nlohmann::json build_provenance() {
         {"boost", std::to_string(BOOST_VERSION / 100000) + "." +
                       std::to_string(BOOST_VERSION / 100 % 1000) + "." +
                       std::to_string(BOOST_VERSION % 100)}}},
+      {"machine", machine_description()},
   };
 }
 

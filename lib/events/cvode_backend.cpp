@@ -3,6 +3,8 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <cstdlib>
@@ -32,6 +34,17 @@ struct CvodeBackend::Callbacks {
     return 0;
   }
 
+  /// The Jacobian of [p; v]' = [v; a] with a constant per mode: ∂ṗ/∂v = I, zero elsewhere.
+  static int jacobian(realtype /*t*/, N_Vector /*y*/, N_Vector /*fy*/, SUNMatrix J, void* user,
+                      N_Vector /*tmp1*/, N_Vector /*tmp2*/, N_Vector /*tmp3*/) {
+    const auto n = static_cast<sunindextype>(static_cast<CvodeBackend*>(user)->n_state_ / 2);
+    SUNMatZero(J);
+    for (sunindextype i = 0; i < n; ++i) {
+      SM_ELEMENT_D(J, i, n + i) = 1.0;
+    }
+    return 0;
+  }
+
   static void error(int code, const char* /*module*/, const char* function, char* msg, void* user) {
     if (code >= 0) {
       return;  // a warning (e.g. t + h == t once); failures come with a negative code
@@ -40,7 +53,8 @@ struct CvodeBackend::Callbacks {
   }
 };
 
-CvodeBackend::CvodeBackend(const BackendOptions& options) : options_(options) {
+CvodeBackend::CvodeBackend(const BackendOptions& options, CvodeMethod method)
+    : options_(options), method_(method) {
   SUNContext context = nullptr;
   if (SUNContext_Create(nullptr, &context) != 0 || context == nullptr) {
     throw core::ComputationError("CVODE: SUNContext_Create failed");
@@ -58,9 +72,18 @@ void CvodeBackend::free_memory() {
   if (cvode_ != nullptr) {
     CVodeFree(&cvode_);
   }
+  // Attached to CVODE, but not owned by it.
   if (nls_ != nullptr) {
-    SUNNonlinSolFree(static_cast<SUNNonlinearSolver>(nls_));  // attached, but not owned by CVODE
+    SUNNonlinSolFree(static_cast<SUNNonlinearSolver>(nls_));
     nls_ = nullptr;
+  }
+  if (linsol_ != nullptr) {
+    SUNLinSolFree(static_cast<SUNLinearSolver>(linsol_));
+    linsol_ = nullptr;
+  }
+  if (matrix_ != nullptr) {
+    SUNMatDestroy(static_cast<SUNMatrix>(matrix_));
+    matrix_ = nullptr;
   }
   for (void** v : {&y_, &dky_, &dky1_}) {
     if (*v != nullptr) {
@@ -100,7 +123,7 @@ void CvodeBackend::ensure_memory(int n_state, int n_roots) {
     *v = nv;
   }
   N_Vector y = as_vector(y_);
-  cvode_ = CVodeCreate(CV_ADAMS, context);
+  cvode_ = CVodeCreate(method_ == CvodeMethod::kBdf ? CV_BDF : CV_ADAMS, context);
   if (cvode_ == nullptr) {
     throw core::ComputationError("CVODE: CVodeCreate failed");
   }
@@ -117,15 +140,36 @@ void CvodeBackend::ensure_memory(int n_state, int n_roots) {
   if ((flag = CVodeSetUserData(cvode_, this)) != CV_SUCCESS) {
     fail("CVodeSetUserData", flag);
   }
-  // Adams with a fixed-point corrector: a non-stiff field needs no Newton iteration, hence no
-  // Jacobian and no linear solver (m = 0: no Anderson acceleration).
-  SUNNonlinearSolver nls = SUNNonlinSol_FixedPoint(y, 0, context);
-  if (nls == nullptr) {
-    throw core::ComputationError("CVODE: SUNNonlinSol_FixedPoint failed");
-  }
-  nls_ = nls;
-  if ((flag = CVodeSetNonlinearSolver(cvode_, nls)) != CV_SUCCESS) {
-    fail("CVodeSetNonlinearSolver", flag);
+  if (method_ == CvodeMethod::kAdams) {
+    // Adams with a fixed-point corrector: a non-stiff field needs no Newton iteration, hence no
+    // Jacobian and no linear solver (m = 0: no Anderson acceleration).
+    SUNNonlinearSolver nls = SUNNonlinSol_FixedPoint(y, 0, context);
+    if (nls == nullptr) {
+      throw core::ComputationError("CVODE: SUNNonlinSol_FixedPoint failed");
+    }
+    nls_ = nls;
+    if ((flag = CVodeSetNonlinearSolver(cvode_, nls)) != CV_SUCCESS) {
+      fail("CVodeSetNonlinearSolver", flag);
+    }
+  } else {
+    // BDF with CVODE's default Newton corrector: a dense matrix, a dense direct solver and the
+    // analytic Jacobian.
+    SUNMatrix matrix = SUNDenseMatrix(n_state, n_state, context);
+    if (matrix == nullptr) {
+      throw core::ComputationError("CVODE: SUNDenseMatrix failed");
+    }
+    matrix_ = matrix;
+    SUNLinearSolver linsol = SUNLinSol_Dense(y, matrix, context);
+    if (linsol == nullptr) {
+      throw core::ComputationError("CVODE: SUNLinSol_Dense failed");
+    }
+    linsol_ = linsol;
+    if ((flag = CVodeSetLinearSolver(cvode_, linsol, matrix)) != CV_SUCCESS) {
+      fail("CVodeSetLinearSolver", flag);
+    }
+    if ((flag = CVodeSetJacFn(cvode_, &Callbacks::jacobian)) != CV_SUCCESS) {
+      fail("CVodeSetJacFn", flag);
+    }
   }
   if ((flag = CVodeRootInit(cvode_, n_roots, &Callbacks::roots)) != CV_SUCCESS) {
     fail("CVodeRootInit", flag);

@@ -4,11 +4,17 @@
 // rootfinding on the mode's guards and has exactly the interface of ExactBackend.
 //
 // Numerical choices.
-//  - Method: Adams–Moulton (CV_ADAMS, orders 1–12) with CVODE's fixed-point (functional)
-//    corrector. The mechanical flows of this layer are not stiff (friction is a mode, not a
-//    stiff force), so BDF would buy stability nobody needs and cost a Jacobian and a dense linear
-//    solve per Newton iteration; high-order Adams takes the longest steps per field evaluation
-//    on a smooth non-stiff field, and with a fixed-point corrector no linear solver is attached.
+//  - Method (CvodeMethod, chosen at construction):
+//    kAdams (the default): Adams–Moulton (CV_ADAMS, orders 1–12) with CVODE's fixed-point
+//    (functional) corrector. The mechanical flows of this layer are not stiff (friction is a
+//    mode, not a stiff force); high-order Adams takes the longest steps per field evaluation on
+//    a smooth non-stiff field, and with a fixed-point corrector no linear solver is attached.
+//    kBdf: BDF (CV_BDF, orders 1–5) with CVODE's default Newton corrector, a dense direct linear
+//    solver (SUNDenseMatrix + SUNLinSol_Dense, CVodeSetLinearSolver) and the analytic Jacobian
+//    of [p; v]' = [v; a] (constant: ∂ṗ/∂v = I, zero elsewhere; CVodeSetJacFn), so no field
+//    evaluations go into difference quotients. It buys stability these flows do not need and
+//    pays a dense LU per Jacobian update; it is here to be measured (the cost-of-accuracy
+//    study), and for flows that one day are stiff.
 //  - Restarts: CVodeReInit at every segment start (a mode change is a discontinuity of the
 //    field; the multistep history must not cross it), CVodeSetStopTime(t_end), and one CVode
 //    call per accepted step (CV_ONE_STEP) so that the observer sees every step.
@@ -30,9 +36,10 @@
 //    root function it leaves disarmed across segments is covered by the step-end test.)
 //
 // Memory. One SUNContext per backend, created in the constructor. The CVODE memory, its vectors
-// and its fixed-point solver are created on the first advance() for a state of dimension 2N
-// with G guard slots and reused by every later segment of that shape (CVodeReInit allocates
-// nothing); a call with another N or G rebuilds them once. Nothing is allocated per step or per
+// and its fixed-point solver (Adams) or dense matrix and linear solver (BDF) are created on the
+// first advance() for a state of dimension 2N with G guard slots and reused by every later
+// segment of that shape (CVodeReInit allocates nothing); a call with another N or G rebuilds
+// them once. Nothing is allocated per step or per
 // segment. SUNDIALS types stay out of this header: the C callbacks reach the templated field
 // and guards through the function pointers below.
 #include <algorithm>
@@ -49,11 +56,18 @@
 
 namespace slipwalk::events {
 
+/// CVODE's linear multistep family and its corrector (see the top of this file).
+enum class CvodeMethod {
+  kAdams,  ///< Adams–Moulton, orders 1–12, fixed-point corrector (no linear solver)
+  kBdf,    ///< BDF, orders 1–5, Newton corrector with a dense direct linear solver
+};
+
 class CvodeBackend {
  public:
   static constexpr const char* kName = "cvode";
 
-  explicit CvodeBackend(const BackendOptions& options = {});
+  explicit CvodeBackend(const BackendOptions& options = {},
+                        CvodeMethod method = CvodeMethod::kAdams);
   ~CvodeBackend();
   CvodeBackend(const CvodeBackend&) = delete;
   CvodeBackend& operator=(const CvodeBackend&) = delete;
@@ -181,6 +195,7 @@ class CvodeBackend {
   friend struct Callbacks;
 
   BackendOptions options_;
+  CvodeMethod method_;
   BackendStats stats_;
 
   // The mode being integrated (valid during advance()).
@@ -194,7 +209,9 @@ class CvodeBackend {
   void* y_ = nullptr;        ///< N_Vector (n_state_): the solution CVODE returns
   void* dky_ = nullptr;      ///< N_Vectors (n_state_): interpolated state and derivative
   void* dky1_ = nullptr;
-  void* nls_ = nullptr;  ///< SUNNonlinearSolver: fixed-point iteration
+  void* nls_ = nullptr;     ///< SUNNonlinearSolver: fixed-point iteration (Adams only)
+  void* matrix_ = nullptr;  ///< SUNMatrix (n_state_ × n_state_), dense (BDF only)
+  void* linsol_ = nullptr;  ///< SUNLinearSolver, dense direct (BDF only)
   int n_state_ = 0;
   int n_roots_ = 0;
   std::string error_;  ///< last CVODE error message (written only on failure)

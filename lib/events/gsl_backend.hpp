@@ -1,34 +1,51 @@
 #pragma once
 // GSL odeiv2 (2.7) as a backend of the hybrid layer (DESIGN.md: one hybrid description, many
-// integrators): the Prince–Dormand 8(9) pair gsl_odeiv2_step_rk8pd with the standard
-// control gsl_odeiv2_control_y_new(atol, rtol), advanced one accepted step at a time by
-// gsl_odeiv2_evolve_apply. Same interface as ExactBackend.
+// integrators): a stepper with the standard control gsl_odeiv2_control_y_new(atol, rtol),
+// advanced one accepted step at a time by gsl_odeiv2_evolve_apply. Same interface as
+// ExactBackend. Three steppers (GslStepper, chosen at construction), one event loop:
+//  - kRk8pd (the default): Prince–Dormand 8(9), gsl_odeiv2_step_rk8pd. At the tolerances this
+//    project asks for (1e-10 and below) an eighth-order pair takes far fewer field evaluations
+//    per unit time than a fourth-order one.
+//  - kRkf45: Runge–Kutta–Fehlberg 4(5), gsl_odeiv2_step_rkf45, the general-purpose pair.
+//  - kMsadams: gsl_odeiv2_step_msadams, variable-order (1–12) Adams in Nordsieck form with
+//    functional iteration. It reads its error levels from the control object through a driver
+//    (gsl_odeiv2_step_set_driver; without one its apply returns GSL_EFAULT), so every stepper is
+//    allocated through gsl_odeiv2_driver_alloc_y_new, which sets the driver of the step,
+//    control and evolve objects; the backend still calls gsl_odeiv2_evolve_apply itself (one
+//    accepted step per call), not gsl_odeiv2_driver_apply, which would integrate to t_end
+//    past the guards.
 //
 // Numerical choices.
-//  - rk8pd rather than rkf45: the tolerances this project asks for (1e-10 and below) are where
-//    an eighth-order pair takes far fewer field evaluations per unit time than a fourth-order
-//    one.
 //  - First step: the starting-step heuristic of Hairer, Nørsett & Wanner (II.4) from two
-//    evaluations of the field (GSL leaves the first step to the caller).
+//    evaluations of the field, for the stepper's order after its reset (rk8pd 8, rkf45 5,
+//    msadams 1: it restarts at order 1). GSL leaves the first step to the caller.
 //  - Guards: after each accepted step every guard is evaluated at the step end (g, and dg/dt
-//    from the field there, which rk8pd returns as dydt_out). The step-end test shared by all
-//    numeric backends then finds the first rising crossing in the step: a sign change of g, or
-//    a rise hidden inside the step — a maximum (dg/dt from + to −) that reaches zero, or a
-//    minimum (dg/dt from − to +) below zero followed by a rise — assuming dg/dt changes sign at
-//    most once per step. GSL's steppers have no dense output, so crossings and extrema are
-//    located by a bracketing solve in time (TOMS 748, then bisection if it runs out of
-//    iterations) in which every trial value RE-INTEGRATES the step from its start with ONE
-//    gsl_odeiv2_step_apply of size τ (an rk8pd step of size τ ≤ the accepted one is at least
-//    as accurate; the field at the step start is evolve's dydt_in, so a trial costs the 12
-//    remaining stages). The bracket is shrunk to BackendOptions::event_tol (default
-//    4ε·max(1, |t|)); the event state is the re-integrated state at its upper end, where the
-//    guard is ≥ 0. Ties between guards go to the last one, as in ExactBackend.
+//    from the field there, GSL's dydt_out). The step-end test shared by all numeric backends
+//    then finds the first rising crossing in the step: a sign change of g, or a rise hidden
+//    inside the step — a maximum (dg/dt from + to −) that reaches zero, or a minimum (dg/dt
+//    from − to +) below zero followed by a rise — assuming dg/dt changes sign at most once per
+//    step. GSL's steppers have no dense output; crossings and extrema are located by a
+//    bracketing solve in time (TOMS 748, then bisection if it runs out of iterations) to
+//    BackendOptions::event_tol (default 4ε·max(1, |t|)) on the state inside the step, which
+//    comes from
+//      rk8pd, rkf45: RE-INTEGRATION of the step from its start with ONE
+//        gsl_odeiv2_step_apply of size τ (a step of size τ ≤ the accepted one is at least as
+//        accurate; the field at the step start is evolve's dydt_in, so a trial costs the
+//        remaining stages: 12 for rk8pd, 5 for rkf45);
+//      msadams: the cubic Hermite interpolant of the step's end states and fields (a multistep
+//        method cannot re-take a step without its history; the interpolant costs no field
+//        evaluations, is O(h⁴) in general and exact here, where a mode's motion is quadratic;
+//        dg/dt comes from its derivative).
+//    The event state is the one at the upper end of the final bracket, where the guard is
+//    ≥ 0. Ties between guards go to the last one, as in ExactBackend.
 //  - The start of a segment mirrors first_rising_root at τ = 0: a guard that is ≥ 0 and rising
-//    fires at t0 without a step; any other guard ≥ 0 at t0 does not fire there.
+//    fires at t0 without a step; any other guard ≥ 0 at t0 does not fire there. Each segment
+//    resets the stepper (msadams restarts its history at order 1: a mode change is a
+//    discontinuity of the field).
 //  - gsl_odeiv2_evolve_apply is given t_end as its end point and lands on it exactly.
 //
-// Memory. The step, control and evolve objects and the scratch vectors are allocated on the
-// first advance() for a state of dimension 2N and reused by every later segment of that
+// Memory. The driver (step, control and evolve objects) and the scratch vectors are allocated
+// on the first advance() for a state of dimension 2N and reused by every later segment of that
 // dimension (a call with another N reallocates them once). Nothing is allocated per step.
 #include <algorithm>
 #include <array>
@@ -41,17 +58,22 @@
 #include "events/guard_search.hpp"
 #include "events/hybrid_system.hpp"
 
-struct gsl_odeiv2_step_struct;
-struct gsl_odeiv2_control_struct;
-struct gsl_odeiv2_evolve_struct;
+struct gsl_odeiv2_driver_struct;
 
 namespace slipwalk::events {
+
+/// Which GSL odeiv2 stepper a GslBackend uses (see the top of this file).
+enum class GslStepper {
+  kRk8pd,    ///< gsl_odeiv2_step_rk8pd, Prince–Dormand 8(9)
+  kRkf45,    ///< gsl_odeiv2_step_rkf45, Runge–Kutta–Fehlberg 4(5)
+  kMsadams,  ///< gsl_odeiv2_step_msadams, variable-order Adams (1–12)
+};
 
 class GslBackend {
  public:
   static constexpr const char* kName = "gsl";
 
-  explicit GslBackend(const BackendOptions& options = {});
+  explicit GslBackend(const BackendOptions& options = {}, GslStepper stepper = GslStepper::kRk8pd);
   ~GslBackend();
   GslBackend(const GslBackend&) = delete;
   GslBackend& operator=(const GslBackend&) = delete;
@@ -96,13 +118,13 @@ class GslBackend {
         const AffineGuard<N>& guard = flow.guard[k];
         const GuardSample hi = sample(guard, y_.data(), step_end_derivative());
         const double t_k = guard_search::first_rise(
+            [&](double tt) { return sample(guard, state_at(t_lo, t_hi, tt), dy_try_.data()).g; },
             [&](double tt) {
-              return sample(guard, reintegrate(t_lo, tt - t_lo), dy_try_.data()).g;
-            },
-            [&](double tt) {
-              const double* y = reintegrate(t_lo, tt - t_lo);
-              rhs_(flow_, y, dy_try_.data());
-              ++stats_.rhs_evals;
+              const double* y = state_at(t_lo, t_hi, tt);
+              if (!interpolates()) {
+                rhs_(flow_, y, dy_try_.data());  // (Hermite: state_at set dy_try_ already)
+                ++stats_.rhs_evals;
+              }
               return sample(guard, y, dy_try_.data()).dg;
             },
             t_lo, t_hi, lo[k], hi, tol);
@@ -113,7 +135,7 @@ class GslBackend {
         lo[k] = hi;
       }
       if (event >= 0) {
-        const double* y = t_event < t_hi ? reintegrate(t_lo, t_event - t_lo) : y_.data();
+        const double* y = t_event < t_hi ? state_at(t_lo, t_hi, t_event) : y_.data();
         x = Eigen::Map<const State<N>>(y);
         observe(t_event, x);
         return {t_event, event};
@@ -155,30 +177,35 @@ class GslBackend {
   void step(double& t, double t_end);
   /// The field at the end of the last accepted step (GSL's dydt_out).
   [[nodiscard]] const double* step_end_derivative() const;
-  /// The state at t_lo + tau from ONE rk8pd step of size tau from the last step's start.
-  const double* reintegrate(double t_lo, double tau);
+  /// True when states inside a step come from the Hermite interpolant (msadams).
+  [[nodiscard]] bool interpolates() const { return stepper_ == GslStepper::kMsadams; }
+  /// The state at t in the last step [t_lo, t_hi] (into y_try_): re-integrated (rk8pd,
+  /// rkf45) or interpolated (msadams, which also writes the interpolant's derivative to
+  /// dy_try_).
+  const double* state_at(double t_lo, double t_hi, double t);
   double initial_step();
   struct Callbacks;  // the C callback handed to GSL
   friend struct Callbacks;
 
   BackendOptions options_;
+  GslStepper stepper_;
   BackendStats stats_;
 
   // The mode being integrated (valid during advance()).
   const void* flow_ = nullptr;
   RhsFn rhs_ = nullptr;
 
-  gsl_odeiv2_step_struct* step_ = nullptr;
-  gsl_odeiv2_control_struct* control_ = nullptr;
-  gsl_odeiv2_evolve_struct* evolve_ = nullptr;
+  gsl_odeiv2_driver_struct* driver_ = nullptr;  ///< owns the step, control and evolve objects
   int n_state_ = 0;
-  double h_ = 0.0;               ///< GSL's proposal for the next step size
-  std::vector<double> y_;        ///< (n_state_) the state GSL advances
-  std::vector<double> y_start_;  ///< (n_state_) the state at the start of the last step
-  std::vector<double> y_try_;    ///< (n_state_) a re-integrated state
-  std::vector<double> dy_try_;   ///< (n_state_) the field there
-  std::vector<double> y_err_;    ///< (n_state_) GSL's error estimate (unused)
-  std::vector<double> work_;     ///< (3 n_state_) scratch of the starting-step heuristic
+  double h_ = 0.0;                ///< GSL's proposal for the next step size
+  std::vector<double> y_;         ///< (n_state_) the state GSL advances
+  std::vector<double> y_start_;   ///< (n_state_) the state at the start of the last step
+  std::vector<double> dy_start_;  ///< (n_state_) the field there
+  std::vector<double> y_try_;     ///< (n_state_) a state inside the last step
+  std::vector<double> dy_try_;    ///< (n_state_) the field there
+  std::vector<double> y_err_;     ///< (n_state_) GSL's error estimate (unused)
+  std::vector<double> work_;      ///< (3 n_state_) scratch of the starting-step heuristic
+  void* system_ = nullptr;        ///< the gsl_odeiv2_system the driver points to (with driver_)
 };
 
 }  // namespace slipwalk::events

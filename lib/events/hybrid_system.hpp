@@ -59,9 +59,11 @@ concept PiecewiseConstantAccelerationSystem = requires(const S& sys, typename S:
 
 /// Tolerances shared by the numeric backends. The exact backend ignores them.
 struct BackendOptions {
-  double rtol = 1e-10;     ///< relative tolerance of the ODE steps
-  double atol = 1e-12;     ///< absolute tolerance of the ODE steps
-  double event_tol = 0.0;  ///< s, time tolerance of guard location; 0 = 4ε·max(1, |t|)
+  double rtol = 1e-10;      ///< relative tolerance of the ODE steps
+  double atol = 1e-12;      ///< absolute tolerance of the ODE steps
+  double event_tol = 0.0;   ///< s, time tolerance of guard location; 0 = 4ε·max(1, |t|)
+  double step = 0.0;        ///< s, the step of FixedStepBackend (> 0 there; others ignore it)
+  long long max_steps = 0;  ///< FixedStepBackend: fail after this many steps in all; 0 = no limit
 };
 
 /// Work counters of one backend; summed over all segments it integrated.

@@ -4,11 +4,8 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
-#include "events/cvode_backend.hpp"
-#include "events/exact_backend.hpp"
-#include "events/gsl_backend.hpp"
 #include "events/hybrid_run.hpp"
-#include "events/odeint_backend.hpp"
+#include "inchworm/backends.hpp"
 #include "inchworm/instant_swap.hpp"
 #include "inchworm/mass_swap.hpp"
 
@@ -97,35 +94,18 @@ void run_trace(const Params& p, Backend& backend, const TraceOptions& opt, std::
 }  // namespace
 
 void write_trace(const Params& p, Method method, const TraceOptions& opt, std::ostream& out) {
-  events::BackendOptions bo;
-  bo.rtol = opt.rtol;
-  bo.atol = opt.rtol * 1e-2;
-  switch (method) {
-    case Method::kExact:
-    case Method::kRootfind:
-    case Method::kAnalytic: {
-      events::ExactBackend backend(bo);
-      backend.set_sample_interval(opt.sample_dt);
-      run_trace(p, backend, opt, out);
-      return;
-    }
-    case Method::kCvode: {
-      events::CvodeBackend backend(bo);
-      run_trace(p, backend, opt, out);
-      return;
-    }
-    case Method::kOdeint: {
-      events::OdeintBackend backend(bo);
-      run_trace(p, backend, opt, out);
-      return;
-    }
-    case Method::kGsl: {
-      events::GslBackend backend(bo);
-      run_trace(p, backend, opt, out);
-      return;
-    }
+  VssOptions vo;
+  vo.rtol = opt.rtol;
+  // The closed forms have no time series: they are traced by the exact event-driven method.
+  const Method traced = is_simulation(method) ? method : Method::kAnalytic;
+  if (!with_backend(traced, backend_options(vo), [&](auto& backend) {
+        if constexpr (requires { backend.set_sample_interval(opt.sample_dt); }) {
+          backend.set_sample_interval(opt.sample_dt);
+        }
+        run_trace(p, backend, opt, out);
+      })) {
+    throw core::ComputationError(std::string("trace: unknown method ") + method_name(method));
   }
-  throw core::ComputationError(std::string("trace: unknown method ") + method_name(method));
 }
 
 }  // namespace slipwalk::inchworm

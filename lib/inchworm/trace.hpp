@@ -20,7 +20,8 @@ struct TraceOptions {
 /// the instant model writes z = y), phase 0 stroke / 1 swap, slide_y the m–m body's mode during a
 /// swap. Events: start, m_stops, M_stops, collision_before/_after, body_stops,
 /// arrival_before/_after, and empty for samples. Methods: analytic (also for exact/rootfind,
-/// which have no time series), cvode, odeint, gsl.
+/// which have no time series) and every integrator of vss.hpp's Method (fixed_rk4 with the step
+/// rtol s).
 void write_trace(const Params& p, Method method, const TraceOptions& opt, std::ostream& out);
 
 }  // namespace slipwalk::inchworm

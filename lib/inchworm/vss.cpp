@@ -2,13 +2,12 @@
 
 #include <array>
 #include <chrono>
+#include <ctime>
 #include <utility>
 
 #include "core/error.hpp"
-#include "events/cvode_backend.hpp"
-#include "events/exact_backend.hpp"
-#include "events/gsl_backend.hpp"
-#include "events/odeint_backend.hpp"
+#include "events/exact_event_times.hpp"
+#include "inchworm/backends.hpp"
 #include "inchworm/closed_form.hpp"
 #include "inchworm/mass_swap_closed_form.hpp"
 
@@ -16,14 +15,26 @@ namespace slipwalk::inchworm {
 
 namespace {
 
-constexpr std::array<std::pair<Method, const char*>, 6> kMethods{{
+constexpr std::array<std::pair<Method, const char*>, 11> kMethods{{
     {Method::kExact, "exact"},
     {Method::kRootfind, "rootfind"},
     {Method::kAnalytic, "analytic"},
     {Method::kCvode, "cvode"},
     {Method::kOdeint, "odeint"},
     {Method::kGsl, "gsl"},
+    {Method::kCvodeBdf, "cvode_bdf"},
+    {Method::kOdeintRkf78, "odeint_rkf78"},
+    {Method::kGslRkf45, "gsl_rkf45"},
+    {Method::kGslMsadams, "gsl_msadams"},
+    {Method::kFixedRk4, "fixed_rk4"},
 }};
+
+/// CPU time of the calling thread, s.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 VssResult from_steady_state(Method method, const SteadyState& s) {
   VssResult r;
@@ -37,18 +48,21 @@ VssResult from_steady_state(Method method, const SteadyState& s) {
   return r;
 }
 
+/// v_ss by simulation with `backend` (or, for exact_event_times, with its integration alone).
 template <class Backend>
-VssResult simulate(const Params& p, Method method, const VssOptions& opt) {
-  events::BackendOptions bo;
-  bo.rtol = opt.rtol;
-  bo.atol = opt.rtol * 1e-2;
-  Backend backend(bo);
+VssResult simulate(const Params& p, Method method, const VssOptions& opt, Backend& backend) {
   SimulationOptions so;
-  so.target = opt.rtol;
+  so.target = opt.target > 0.0 ? opt.target : opt.rtol;
   so.stop = opt.stop;
   so.estimator = opt.estimator;
   so.max_strokes = opt.max_strokes;
-  const SimulationSummary s = steady_state_by_simulation(p, backend, so);
+  SimulationSummary s;
+  if (opt.exact_event_times) {
+    events::ExactEventTimes<Backend> integration_only(backend);
+    s = steady_state_by_simulation(p, integration_only, so);
+  } else {
+    s = steady_state_by_simulation(p, backend, so);
+  }
   VssResult r;
   r.method = method;
   r.converged = s.converged;
@@ -86,10 +100,24 @@ const char* method_name(Method m) {
   return "?";
 }
 
-const char* method_names() { return "exact|rootfind|analytic|cvode|odeint|gsl"; }
+const char* method_names() {
+  return "exact|rootfind|analytic|cvode|odeint|gsl|cvode_bdf|odeint_rkf78|gsl_rkf45|gsl_msadams|"
+         "fixed_rk4";
+}
+
+events::BackendOptions backend_options(const VssOptions& opt) {
+  events::BackendOptions bo;
+  bo.rtol = opt.rtol;
+  bo.atol = opt.rtol * 1e-2;  // 1 cm: the scale of the inchworm's lengths
+  bo.event_tol = opt.event_tol;
+  bo.step = opt.step > 0.0 ? opt.step : opt.rtol;
+  bo.max_steps = opt.max_steps;
+  return bo;
+}
 
 VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = thread_cpu_seconds();
   VssResult r;
   try {
     switch (method) {
@@ -112,23 +140,10 @@ VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
         r = from_steady_state(method, method == Method::kExact ? steady_state_closed_form(p)
                                                                : steady_state_fixed_point(p));
         break;
-      case Method::kAnalytic:
-        r = simulate<events::ExactBackend>(p, method, opt);
-        break;
-      // numeric backends:
-      case Method::kCvode:
-        r = simulate<events::CvodeBackend>(p, method, opt);
-        break;
-      case Method::kOdeint:
-        r = simulate<events::OdeintBackend>(p, method, opt);
-        break;
-      case Method::kGsl:
-        r = simulate<events::GslBackend>(p, method, opt);
-        break;
       default:
-        r.method = method;
-        r.converged = false;
-        r.message = std::string("method ") + method_name(method) + " is not built";
+        // The simulation methods: the backend of each is chosen in backends.hpp.
+        (void)with_backend(method, backend_options(opt),
+                           [&](auto& backend) { r = simulate(p, method, opt, backend); });
         break;
     }
   } catch (const std::exception& e) {
@@ -137,6 +152,7 @@ VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
     r.message = e.what();
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.cpu_s = thread_cpu_seconds() - cpu_start;
   return r;
 }
 

@@ -11,30 +11,46 @@
 namespace slipwalk::inchworm {
 
 enum class Method {
-  kExact,     ///< the algebraic closed form of the fixed point (closed_form.hpp)
-  kRootfind,  ///< the fixed point of the stroke map by GSL's Brent solver
-  kAnalytic,  ///< exact event-driven integration (events::ExactBackend)
-  kCvode,     ///< SUNDIALS CVODE with rootfinding
-  kOdeint,    ///< Boost.Odeint dense-output Dormand–Prince with guard location
-  kGsl,       ///< GSL odeiv2 with guard location
+  kExact,        ///< the algebraic closed form of the fixed point (closed_form.hpp)
+  kRootfind,     ///< the fixed point of the stroke map by GSL's Brent solver
+  kAnalytic,     ///< exact event-driven integration (events::ExactBackend)
+  kCvode,        ///< SUNDIALS CVODE, Adams (fixed-point corrector), with rootfinding
+  kOdeint,       ///< Boost.Odeint dense-output Dormand–Prince 5(4) with guard location
+  kGsl,          ///< GSL odeiv2 Prince–Dormand 8(9) (rk8pd) with guard location
+  kCvodeBdf,     ///< SUNDIALS CVODE, BDF (Newton, dense direct solver), with rootfinding
+  kOdeintRkf78,  ///< Boost.Odeint controlled Fehlberg 7(8), guards by re-integration
+  kGslRkf45,     ///< GSL odeiv2 Runge–Kutta–Fehlberg 4(5) with guard location
+  kGslMsadams,   ///< GSL odeiv2 variable-order Adams (msadams), guards on a Hermite interpolant
+  kFixedRk4,     ///< classical RK4 with a fixed step and NO event location (a plain script)
 };
 
 [[nodiscard]] std::optional<Method> parse_method(std::string_view name);
 [[nodiscard]] const char* method_name(Method m);
-/// "exact|rootfind|analytic|cvode|odeint|gsl", for help texts and error messages.
+/// "exact|rootfind|analytic|cvode|odeint|gsl|cvode_bdf|...", for help texts and error messages.
 [[nodiscard]] const char* method_names();
 [[nodiscard]] inline bool is_simulation(Method m) {
   return m != Method::kExact && m != Method::kRootfind;
 }
 
 struct VssOptions {
-  /// Integrators: the relative step tolerance (absolute: rtol × 1 cm) and the convergence
-  /// target of the simulation. Closed forms ignore it.
+  /// Integrators: the relative step tolerance (absolute: rtol × 1 cm) and, unless `target` is
+  /// set, the convergence target of the simulation. Closed forms ignore it. fixed_rk4 has no
+  /// tolerance: its step is `step`, or rtol read as seconds when `step` is 0 (so --rtol sets it).
   double rtol = 1e-10;
+  double target = 0.0;  ///< convergence target of the simulation (see StopRule); 0 = rtol
   StopRule stop = StopRule::kEstimatedError;
   Estimator estimator = Estimator::kCycleAverage;
   long long max_strokes = 4'000'000;
+  double event_tol = 0.0;   ///< s, guard location tolerance; 0 = 4ε·max(1, |t|)
+  double step = 0.0;        ///< s, fixed_rk4's step; 0 = rtol s
+  long long max_steps = 0;  ///< fixed_rk4: fail after this many steps; 0 = no limit
+  /// Integration error only: the events at the exact times (events::ExactEventTimes; a study
+  /// of error sources, not a method).
+  bool exact_event_times = false;
 };
+
+/// The backend settings of a solve: rtol, atol = rtol × 1 cm, event_tol, step, max_steps.
+[[nodiscard]] events::BackendOptions backend_options(const VssOptions& opt);
 
 struct VssResult {
   Method method = Method::kExact;
@@ -51,6 +67,7 @@ struct VssResult {
   long long strokes = 0;
   events::BackendStats stats;
   double wall_s = 0.0;  ///< wall time of this solve
+  double cpu_s = 0.0;   ///< CPU time of this solve (the calling thread's)
 };
 
 /// Solves for v_ss. Parameters must be valid (see validate()); numerical trouble is reported in

@@ -96,10 +96,34 @@ State<1> state(double p, double v) {
   return x;
 }
 
+// The other variants of the three libraries' backends, as types for the typed tests.
+struct CvodeBdf : CvodeBackend {
+  explicit CvodeBdf(const BackendOptions& o) : CvodeBackend(o, CvodeMethod::kBdf) {}
+};
+struct OdeintFehlberg78 : OdeintBackend {
+  explicit OdeintFehlberg78(const BackendOptions& o)
+      : OdeintBackend(o, OdeintStepper::kFehlberg78) {}
+};
+struct GslRkf45 : GslBackend {
+  explicit GslRkf45(const BackendOptions& o) : GslBackend(o, GslStepper::kRkf45) {}
+};
+struct GslMsadams : GslBackend {
+  explicit GslMsadams(const BackendOptions& o) : GslBackend(o, GslStepper::kMsadams) {}
+};
+
+/// The agreement asked of a backend where it must resolve a crossing inside its very first
+/// step: msadams restarts at order 1 in every segment (a multistep method has no history
+/// across a mode change), so there its state, and with it the crossing, is good to ~2e-9.
+template <class Backend>
+constexpr double kAgreeFirstStep = kAgree;
+template <>
+constexpr double kAgreeFirstStep<GslMsadams> = 3e-9;
+
 template <class Backend>
 class NumericBackend : public ::testing::Test {};
 
-using Backends = ::testing::Types<CvodeBackend, OdeintBackend, GslBackend>;
+using Backends = ::testing::Types<CvodeBackend, OdeintBackend, GslBackend, CvodeBdf,
+                                  OdeintFehlberg78, GslRkf45, GslMsadams>;
 TYPED_TEST_SUITE(NumericBackend, Backends);
 
 TYPED_TEST(NumericBackend, PositionGuardFiresAtTheClosedFormTime) {
@@ -248,7 +272,7 @@ TYPED_TEST(NumericBackend, AZeroGuardWithZeroSlopeDoesNotLeakIntoTheNextSegment)
   const OneBody push = OneBody(2.0).guard(1.0, 0.0, -1e-6);
   end = backend.advance(push.flow, 1.0, x, 10.0);
   EXPECT_EQ(end.guard, 0);
-  EXPECT_NEAR(end.t, 1.001, kAgree);
+  EXPECT_NEAR(end.t, 1.001, kAgreeFirstStep<TypeParam>);
 }
 
 TYPED_TEST(NumericBackend, EventToleranceIsHonoured) {

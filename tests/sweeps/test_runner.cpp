@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli/command.hpp"
 #include "core/error.hpp"
@@ -48,32 +49,40 @@ RunOptions options(const std::filesystem::path& data, unsigned jobs, bool timing
   return o;
 }
 
-/// The CSV without its wall_s column.
+/// The CSV without its timing columns (wall_s, cpu_s).
 std::string without_wall(const std::string& csv) {
   std::istringstream in(csv);
   std::string line;
   std::getline(in, line);
-  std::size_t column = 0;
-  for (std::size_t p = 0, k = 0;; ++k) {
+  std::vector<bool> timing;
+  for (std::size_t p = 0;;) {
     const std::size_t e = line.find(',', p);
-    if (line.substr(p, e - p) == "wall_s") {
-      column = k;
-      break;
-    }
+    const std::string name = line.substr(p, e == std::string::npos ? std::string::npos : e - p);
+    timing.push_back(name == "wall_s" || name == "cpu_s");
     if (e == std::string::npos) {
-      return csv;
+      break;
     }
     p = e + 1;
   }
   std::string out;
   in.seekg(0);
   while (std::getline(in, line)) {
-    std::size_t p = 0;
-    for (std::size_t k = 0; k < column; ++k) {
-      p = line.find(',', p) + 1;
+    std::string kept;
+    std::size_t k = 0;
+    for (std::size_t p = 0;; ++k) {
+      const std::size_t e = line.find(',', p);
+      if (k >= timing.size() || !timing[k]) {
+        if (k > 0) {
+          kept.push_back(',');
+        }
+        kept.append(line, p, e == std::string::npos ? std::string::npos : e - p);
+      }
+      if (e == std::string::npos) {
+        break;
+      }
+      p = e + 1;
     }
-    const std::size_t e = line.find(',', p);
-    out += line.substr(0, p) + (e == std::string::npos ? "" : line.substr(e + 1)) + "\n";
+    out += kept + "\n";
   }
   return out;
 }

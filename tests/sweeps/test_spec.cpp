@@ -323,14 +323,17 @@ std::size_t column(const PreparedSweep& p, const std::string& name) {
 TEST(Spec, VssColumnsEndWithTheModel) {
   const auto p = prepare(parse("[params]\nF = 45.0\nmu = 1.0\n"));
   const auto& cols = p.function->columns;
-  ASSERT_GE(cols.size(), 4U);
+  ASSERT_GE(cols.size(), 33U);
   // appended after the chapter 2 columns, which keep their places
-  EXPECT_EQ(cols[cols.size() - 4], "message");
-  EXPECT_EQ(cols[cols.size() - 3], "model");
-  EXPECT_EQ(cols[cols.size() - 2], "alpha");
-  EXPECT_EQ(cols[cols.size() - 1], "swap_stopped");
+  EXPECT_EQ(cols[22], "message");
+  EXPECT_EQ(cols[23], "model");
+  EXPECT_EQ(cols[24], "alpha");
+  EXPECT_EQ(cols[25], "swap_stopped");
   EXPECT_EQ(cols[0], "id");
   EXPECT_EQ(cols[13], "regime");
+  // then the cost-of-accuracy columns
+  EXPECT_EQ(cols[26], "cpu_s");
+  EXPECT_EQ(cols[32], "event_times");
 }
 
 TEST(Spec, ModelAndAlpha) {
