@@ -8,5 +8,6 @@ namespace slipwalk::cli {
 void add_inchworm_command(CLI::App& app);   ///< inchworm vss | trace      (inchworm_command.cpp)
 void add_sweep_command(CLI::App& app);      ///< sweep SPEC.toml            (sweep_command.cpp)
 void add_reproduce_command(CLI::App& app);  ///< reproduce [--quick] [...]  (reproduce_command.cpp)
+void add_model_command(CLI::App& app);      ///< model [--friction] [--in]   (model_command.cpp)
 
 }  // namespace slipwalk::cli

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   slipwalk::cli::add_inchworm_command(app);
   slipwalk::cli::add_sweep_command(app);
   slipwalk::cli::add_reproduce_command(app);
+  slipwalk::cli::add_model_command(app);
   try {
     app.parse(argc, argv);
     return 0;

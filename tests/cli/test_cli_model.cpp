@@ -1,0 +1,103 @@
+// slipwalk model: the frame format end to end, the CSV batch, and bad input (exit 2, a message
+// naming file and place, nothing written).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli/command.hpp"
+#include "connection/local_connection.hpp"
+#include "contact/frame_json.hpp"
+
+namespace slipwalk::cli {
+namespace {
+
+using namespace slipwalk::testing;  // NOLINT(google-build-using-namespace): test helpers
+
+const char* kHexapod = R"({"q": [[0.3, 0.2, -0.1], [-0.3, 0.2, -0.1], [0.0, -0.25, -0.1],
+  [0.3, -0.2, -0.05], [-0.3, -0.2, -0.1], [0.0, 0.25, -0.08]],
+ "qdot": [[-0.1, 0, 0], [-0.1, 0.01, 0], [-0.12, 0, 0], [0.05, 0, 0], [-0.1, 0, 0], [0.02, 0, 0]],
+ "Mg": 9.81, "K": [100, 100, 100, 100, 100, 100]})";
+
+TEST(CliModel, JsonFrameMatchesTheLibrary) {
+  const ScratchDir dir;
+  const auto in = dir / "frame.json";
+  write_text(in, kHexapod);
+  for (const char* law : {"viscous", "coulomb"}) {
+    const CommandResult r = run_slipwalk({"model", "--friction", law, "--in", in.string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto out = nlohmann::json::parse(r.out);
+    contact::FrameInput expected = contact::parse_frame_json(kHexapod, "x");
+    connection::evaluate(expected.robot, expected.frame,
+                         std::string(law) == "viscous" ? connection::FrictionLaw::kViscousCoulomb
+                                                       : connection::FrictionLaw::kCoulomb);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(out.at("v_body")[static_cast<std::size_t>(i)].get<double>(),
+                expected.frame.v_body(i));
+    }
+    EXPECT_EQ(out.at("contact").size(), 6U);
+    EXPECT_EQ(out.at("Fz").size(), 6U);
+    EXPECT_EQ(out.at("support").at("status"), "balanced");
+    EXPECT_TRUE(out.at("friction").at("converged").get<bool>());
+  }
+}
+
+TEST(CliModel, CsvBatchOneFramePerRow) {
+  const ScratchDir dir;
+  write_text(dir / "robot.json", R"({"K": [100, 100, 100], "Mg": 9.81})");
+  write_text(dir / "frames.csv",
+             "theta,q0x,q0y,q0z,qd0x,qd0y,qd0z,q1x,q1y,q1z,qd1x,qd1y,qd1z,q2x,q2y,q2z,qd2x,qd2y,"
+             "qd2z\n"
+             "0,0.2,0.1,-0.1,0.1,0,0,-0.2,0.1,-0.1,0.1,0,0,0,-0.15,-0.1,-0.2,0,0\n"
+             "0.5,0.2,0.1,-0.1,0,0,0,-0.2,0.1,-0.1,0,0,0,0,-0.15,-0.1,0,0,0\n");
+  const auto out = dir / "out.csv";
+  const CommandResult r = run_slipwalk({"model", "--robot", (dir / "robot.json").string(), "--in",
+                                        (dir / "frames.csv").string(), "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = read_text(out);
+  EXPECT_EQ(text.rfind("frame,alpha,beta,z,vx,vy,wz,", 0), 0U);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 3);  // header + 2 frames
+}
+
+TEST(CliModel, BadInputExits2NamingThePlaceAndWritesNothing) {
+  const ScratchDir dir;
+  const auto out = dir / "out.json";
+  struct Case {
+    std::string text;
+    std::string where;
+  };
+  const std::vector<Case> cases = {
+      {"{\"q\": [[0,0,-1]],\n \"qdot\": [[0,0,0]] oops}", "frame.json:2:20"},
+      {R"({"q": [[0,0,-1],[1,0,-1]], "qdot": [[0,0,0]]})", "frame.json: qdot"},
+      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "K": [-1]})", "frame.json: K[0]"},
+      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "mu": [-0.5]})", "frame.json: mu[0]"},
+      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "Mg": 0})", "frame.json: Mg"},
+      {R"({"q": [[0,0,NaN]], "qdot": [[0,0,0]]})", "frame.json:1:"},
+  };
+  for (const Case& c : cases) {
+    write_text(dir / "frame.json", c.text);
+    const CommandResult r =
+        run_slipwalk({"model", "--in", (dir / "frame.json").string(), "--out", out.string()});
+    EXPECT_EQ(r.exit_code, 2) << c.text;
+    EXPECT_NE(r.err.find(c.where), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  write_text(dir / "frame.json", kHexapod);
+  const CommandResult bad_law =
+      run_slipwalk({"model", "--friction", "stiction", "--in", (dir / "frame.json").string()});
+  EXPECT_EQ(bad_law.exit_code, 2);
+  EXPECT_NE(bad_law.err.find("--friction"), std::string::npos);
+  // A CSV batch with a non-number names row and column.
+  write_text(dir / "robot.json", R"({"legs": 1})");
+  write_text(dir / "frames.csv", "theta,q0x,q0y,q0z,qd0x,qd0y,qd0z\n0,0,0,-1,x,0,0\n");
+  const CommandResult bad_cell =
+      run_slipwalk({"model", "--robot", (dir / "robot.json").string(), "--in",
+                    (dir / "frames.csv").string(), "--out", out.string()});
+  EXPECT_EQ(bad_cell.exit_code, 2);
+  EXPECT_NE(bad_cell.err.find("frames.csv:2:10"), std::string::npos) << bad_cell.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace slipwalk::cli
