@@ -476,7 +476,15 @@ const std::vector<PointFunction>& registry() {
        [](const Point& p) { (void)read_convergence(p); },
        run_convergence},
   };
-  return functions;
+  // The multi-legged model's point functions (thesis ch. 3) live in legged_points.cpp.
+  static const std::vector<PointFunction> all = [] {
+    std::vector<PointFunction> v = functions;
+    for (auto& f : legged_point_functions()) {
+      v.push_back(std::move(f));
+    }
+    return v;
+  }();
+  return all;
 }
 
 }  // namespace
