@@ -13,6 +13,7 @@
 #include "inchworm/params.hpp"
 #include "inchworm/simulate.hpp"
 #include "inchworm/vss.hpp"
+#include "sweeps/point_reader.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -21,77 +22,6 @@ namespace {
 using core::InputError;
 using inchworm::Method;
 using inchworm::Params;
-
-/// Typed access to a point's inputs; rejects keys the point function does not take.
-class Reader {
- public:
-  Reader(const Point& p, std::string_view kind, const std::vector<std::string_view>& accepted)
-      : point_(p) {
-    for (const auto& [key, value] : p.values) {
-      if (std::find(accepted.begin(), accepted.end(), key) == accepted.end()) {
-        std::string message = "unknown key '" + key + "' for kind ";
-        message += kind;
-        message += "; expected one of ";
-        for (std::size_t i = 0; i < accepted.size(); ++i) {
-          message += i ? ", " : "";
-          message += accepted[i];
-        }
-        throw InputError(value.origin, message);
-      }
-    }
-  }
-
-  [[nodiscard]] bool has(std::string_view key) const { return point_.find(key) != nullptr; }
-
-  [[noreturn]] void fail(std::string_view key, const std::string& what) const {
-    const Value* v = point_.find(key);
-    throw InputError(v != nullptr ? v->origin : point_.source,
-                     std::string(key) + ": " + what + " (point " + std::to_string(point_.id) + ")");
-  }
-
-  [[nodiscard]] std::optional<double> number(std::string_view key) const {
-    const Value* v = point_.find(key);
-    if (v == nullptr) {
-      return std::nullopt;
-    }
-    if (!v->is_number()) {
-      fail(key, "expected a number, got " + v->repr());
-    }
-    return v->number();
-  }
-  [[nodiscard]] double number(std::string_view key, double fallback) const {
-    return number(key).value_or(fallback);
-  }
-
-  [[nodiscard]] std::optional<std::string> text(std::string_view key) const {
-    const Value* v = point_.find(key);
-    if (v == nullptr) {
-      return std::nullopt;
-    }
-    if (v->is_number()) {
-      fail(key, "expected a string, got " + v->repr());
-    }
-    return v->text();
-  }
-
-  [[nodiscard]] long long integer(std::string_view key, long long fallback, long long lo,
-                                  long long hi) const {
-    const auto v = number(key);
-    if (!v) {
-      return fallback;
-    }
-    if (*v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi)) {
-      fail(key, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) +
-                    ", got " + core::format_double(*v));
-    }
-    return static_cast<long long>(*v);
-  }
-
-  [[nodiscard]] const Point& point() const { return point_; }
-
- private:
-  const Point& point_;
-};
 
 // --- the inchworm's inputs ----------------------------------------------------------------------
 
