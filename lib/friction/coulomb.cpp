@@ -190,20 +190,8 @@ class CoulombSolver {
     }
   }
 
-  /// D(y); leaves r_k(y) in work_2n.
-  double dissipation(const Eigen::Vector3d& y) {
-    double D = 0.0;
-    for (int k = 0; k < frame_.legs(); ++k) {
-      const double c = weight(k);
-      if (c == 0.0) {
-        continue;
-      }
-      const Eigen::Vector2d r = residual(k, c, lever(k), y);
-      frame_.work_2n.col(k) = r;
-      D += r.norm();
-    }
-    return D;
-  }
+  /// D(y) = D_δ(y) at δ = 0; leaves r_k(y) in work_2n.
+  double dissipation(const Eigen::Vector3d& y) { return smoothed(y, 0.0); }
 
   /// D_δ(y) = Σ √(‖r_k‖² + δ²); leaves r_k(y) in work_2n.
   double smoothed(const Eigen::Vector3d& y, double d2) {
