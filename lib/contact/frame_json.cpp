@@ -233,9 +233,11 @@ json frame_to_json(const Robot& robot, const Frame& f, bool with_connection) {
                     {"iterations", f.support.iterations},
                     {"residual", f.support.residual},
                     {"message", f.support.message}};
-  out["friction"] = {{"converged", f.friction.converged}, {"iterations", f.friction.iterations},
-                     {"residual", f.friction.residual},   {"certificate", f.friction.certificate},
-                     {"unique", f.friction.unique},       {"message", f.friction.message}};
+  out["friction"] = {
+      {"converged", f.friction.converged},     {"iterations", f.friction.iterations},
+      {"residual", f.friction.residual},       {"certificate", f.friction.certificate},
+      {"unique", f.friction.unique},           {"static_feet", f.friction.static_feet},
+      {"dissipation", f.friction.dissipation}, {"message", f.friction.message}};
   return out;
 }
 

@@ -2,6 +2,7 @@
 // that says what and where.
 #include <gtest/gtest.h>
 
+#include "connection/local_connection.hpp"
 #include "contact/frame_json.hpp"
 #include "core/error.hpp"
 
@@ -62,6 +63,26 @@ TEST(FrameJson, RobotAloneForBatches) {
   EXPECT_DOUBLE_EQ(r.Mg, 20.0);
   EXPECT_THROW((void)parse_robot_json(R"({"legs": 2.5})", "r.json"), core::InputError);
   EXPECT_THROW((void)parse_robot_json(R"({"Mg": 1})", "r.json"), core::InputError);
+}
+
+// The output carries the friction summary whole: the number of static feet and the dissipated
+// power, which must equal −Σ F_k·u_k recomputed from the written forces and slip velocities.
+TEST(FrameJson, WritesTheFrictionSummaryWithStaticFeetAndDissipation) {
+  FrameInput in = parse_frame_json(kTripod, "f.json");
+  connection::evaluate(in.robot, in.frame, connection::FrictionLaw::kCoulomb);
+  const nlohmann::json out = frame_to_json(in.robot, in.frame, false);
+  const auto& fr = out.at("friction");
+  EXPECT_EQ(fr.at("static_feet").get<int>(), in.frame.friction.static_feet);
+  const auto v = out.at("v_body").get<std::vector<double>>();
+  double power = 0.0;
+  for (int k = 0; k < in.frame.legs(); ++k) {
+    const auto F = out.at("Fxy").at(static_cast<std::size_t>(k)).get<std::vector<double>>();
+    const double ux = v[0] - v[2] * in.frame.q(1, k) + in.frame.qdot(0, k);
+    const double uy = v[1] + v[2] * in.frame.q(0, k) + in.frame.qdot(1, k);
+    power -= F[0] * ux + F[1] * uy;
+  }
+  EXPECT_GT(power, 0.0);
+  EXPECT_NEAR(fr.at("dissipation").get<double>(), power, 1e-9 * power);
 }
 
 }  // namespace
