@@ -1,0 +1,349 @@
+// The scene reader: the whole file is checked before anything runs (scene.hpp has the format).
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <type_traits>
+
+#include "core/csv.hpp"
+#include "core/error.hpp"
+#include "scene/toml_reader.hpp"
+
+namespace slipwalk::scene {
+
+namespace {
+
+using core::InputError;
+
+/// Every table a scene may hold and the keys each may hold (toml_reader.hpp uses it to suggest).
+const std::vector<TableSchema>& schema() {
+  static const std::vector<TableSchema> tables = {
+      {"robot", {"name", "legs", "radius"}},
+      {"gait", {"kind", "frequency", "steer", "dphi", "roll_amplitude", "yaw_amplitude"}},
+      {"run", {"duration", "dt", "steps"}},
+      {"friction", {"law", "tol", "max_iterations"}},
+      {"filter", {"gamma"}},
+  };
+  return tables;
+}
+
+const TableSchema& schema_of(std::string_view name) {
+  for (const TableSchema& t : schema()) {
+    if (t.name == name) {
+      return t;
+    }
+  }
+  throw std::logic_error("scene: no schema for a table");
+}
+
+/// The top level holds tables only, each named in the schema; a key of a table written at the top
+/// level is pointed to its table.
+void check_top_level(const toml::table& doc, const std::string& path) {
+  std::vector<std::string_view> names;
+  for (const TableSchema& t : schema()) {
+    names.push_back(t.name);
+  }
+  for (auto&& [k, v] : doc) {
+    const std::string_view key = k.str();
+    const bool known = std::find(names.begin(), names.end(), key) != names.end();
+    if (known && v.is_table()) {
+      continue;
+    }
+    std::string what;
+    if (known) {
+      what.append("expected a table [").append(key).append("], got ").append(type_name(v));
+    } else if (v.is_table()) {
+      what.append("unknown table [").append(key).append("]");
+      if (const std::string_view guess = nearest(key, names); !guess.empty()) {
+        what.append("; did you mean [").append(guess).append("]?");
+      }
+    } else {
+      what.append("unknown key '").append(key).append("' at the top level");
+      for (const TableSchema& t : schema()) {
+        if (std::find(t.keys.begin(), t.keys.end(), key) != t.keys.end()) {
+          what.append("; it belongs in [").append(t.name).append("]");
+          break;
+        }
+      }
+    }
+    what.append(" (tables: ");
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      what.append(i == 0 ? "" : ", ").append(names[i]);
+    }
+    what.append(")");
+    throw InputError(origin_of(k.source(), path), what);
+  }
+}
+
+/// The table `name`, or nullptr when the file has none.
+const toml::table* table_of(const toml::table& doc, std::string_view name) {
+  const toml::node* node = doc.get(name);
+  return node == nullptr ? nullptr : node->as_table();
+}
+
+const toml::table& required_table(const toml::table& doc, std::string_view name,
+                                  const std::string& path) {
+  const toml::table* t = table_of(doc, name);
+  if (t == nullptr) {
+    std::string what = "missing required table [";
+    what.append(name).append("]");
+    throw InputError(origin_of(doc.source(), path), what);
+  }
+  return *t;
+}
+
+/// The gaits each robot walks with; the first is listed first in messages.
+std::vector<std::string_view> gaits_of(std::string_view robot) {
+  if (robot == "bigant") {
+    return {"tripod", "metachronal"};
+  }
+  if (robot == "multipod") {
+    return {"undulation"};
+  }
+  if (robot == "quadruped") {
+    return {"trot"};
+  }
+  return {"disk"};
+}
+
+/// Reads the gait's frequency (every gait has one) into `value` if given: > 0.
+void read_frequency(const TableReader& gait, double& value) {
+  if (const toml::node* n = gait.find("frequency")) {
+    value = gait.number(*n, "frequency");
+    gait.check(value > 0.0, *n, "frequency", "must be > 0 Hz, got " + core::format_double(value));
+  }
+}
+
+void read_angle(const TableReader& gait, std::string_view key, double& value) {
+  if (const toml::node* n = gait.find(key)) {
+    value = gait.number(*n, key);
+  }
+}
+
+Gait read_gait(const TableReader& robot, const TableReader& gait, const std::string& robot_name) {
+  const std::string kind = gait.choice(gait.required("kind"), "kind", gaits_of(robot_name));
+  std::string chosen = "kind = '";
+  chosen.append(kind).append("'");
+  if (kind != "tripod") {
+    gait.forbid("steer", "the tripod gait", chosen);
+  }
+  if (kind != "undulation") {
+    for (std::string_view key : {"dphi", "roll_amplitude", "yaw_amplitude"}) {
+      gait.forbid(key, "the undulation gait", chosen);
+    }
+  }
+  // The robot's own parameters (legs, radius) live in [robot]; the gait structs carry them.
+  const toml::node* legs = robot.find("legs");
+  if (kind == "tripod") {
+    robots::TripodGait g;
+    read_frequency(gait, g.frequency);
+    if (const toml::node* n = gait.find("steer")) {
+      g.steer = gait.number(*n, "steer");
+      gait.check(std::abs(g.steer) <= 1.0, *n, "steer",
+                 "must be in [-1, 1], got " + core::format_double(g.steer));
+    }
+    return g;
+  }
+  if (kind == "metachronal") {
+    robots::MetachronalGait g;
+    read_frequency(gait, g.frequency);
+    return g;
+  }
+  if (kind == "undulation") {
+    robots::UndulationGait g;
+    read_frequency(gait, g.frequency);
+    read_angle(gait, "dphi", g.dphi);
+    read_angle(gait, "roll_amplitude", g.roll_amplitude);
+    read_angle(gait, "yaw_amplitude", g.yaw_amplitude);
+    if (legs != nullptr) {
+      const long long n = robot.integer(*legs, "legs");
+      robot.check(n == 6 || n == 8 || n == 10 || n == 12, *legs, "legs",
+                  "the multipod has 6, 8, 10 or 12 legs, got " + std::to_string(n));
+      g.legs = static_cast<int>(n);
+    }
+    return g;
+  }
+  if (kind == "trot") {
+    robots::TrotGait g;
+    read_frequency(gait, g.frequency);
+    return g;
+  }
+  robots::DiskGait g;
+  read_frequency(gait, g.frequency);
+  if (legs != nullptr) {
+    const long long n = robot.integer(*legs, "legs");
+    robot.check(n >= 3 && n <= 1000, *legs, "legs",
+                "the disk robot has 3 to 1000 legs, got " + std::to_string(n));
+    g.legs = static_cast<int>(n);
+  }
+  if (const toml::node* r = robot.find("radius")) {
+    g.radius = robot.number(*r, "radius");
+    robot.check(g.radius > 0.0, *r, "radius",
+                "must be > 0 m, got " + core::format_double(g.radius));
+  }
+  return g;
+}
+
+void read_run(const TableReader& run, Scene& scene) {
+  const toml::node& duration = run.required("duration");
+  scene.duration = run.number(duration, "duration");
+  run.check(scene.duration > 0.0, duration, "duration",
+            "must be > 0 s, got " + core::format_double(scene.duration));
+  const toml::node* dt = run.find("dt");
+  const toml::node* steps = run.find("steps");
+  if (dt != nullptr && steps != nullptr) {
+    run.check(false, *steps, "steps", "give dt or steps, not both");
+  }
+  if (dt == nullptr && steps == nullptr) {
+    throw InputError(run.origin(), "missing required key 'dt' (or 'steps') in [run]");
+  }
+  if (steps != nullptr) {
+    scene.steps = run.integer(*steps, "steps");
+    run.check(
+        scene.steps >= 1 && scene.steps <= kMaxSteps, *steps, "steps",
+        "must be from 1 to " + std::to_string(kMaxSteps) + ", got " + std::to_string(scene.steps));
+    scene.dt = scene.duration / static_cast<double>(scene.steps);
+    return;
+  }
+  scene.dt = run.number(*dt, "dt");
+  run.check(scene.dt > 0.0, *dt, "dt", "must be > 0 s, got " + core::format_double(scene.dt));
+  // The frames are t_n = n·dt, n = 0 … steps, and the last one is the duration: the duration
+  // must be a whole number of steps (to rounding).
+  const double ratio = scene.duration / scene.dt;
+  run.check(ratio <= static_cast<double>(kMaxSteps), *dt, "dt",
+            "duration / dt = " + core::format_double(ratio) + " steps; at most " +
+                std::to_string(kMaxSteps));
+  const double whole = std::round(ratio);
+  run.check(whole >= 1.0 && std::abs(ratio - whole) <= 1e-9 * whole, *dt, "dt",
+            "the duration must be a whole number of steps, got duration / dt = " +
+                core::format_double(ratio));
+  scene.steps = static_cast<long long>(whole);
+}
+
+void read_friction(const TableReader& friction, Scene& scene) {
+  const std::string law = friction.choice(friction.required("law"), "law", {"viscous", "coulomb"});
+  if (law == "viscous") {
+    scene.friction.law = connection::FrictionLaw::kViscousCoulomb;
+    friction.forbid("tol", "the coulomb law", "law = 'viscous'");
+    friction.forbid("max_iterations", "the coulomb law", "law = 'viscous'");
+    return;
+  }
+  scene.friction.law = connection::FrictionLaw::kCoulomb;
+  if (const toml::node* n = friction.find("tol")) {
+    const double tol = friction.number(*n, "tol");
+    friction.check(tol > 0.0, *n, "tol", "must be > 0, got " + core::format_double(tol));
+    scene.friction.coulomb.tol = tol;
+  }
+  if (const toml::node* n = friction.find("max_iterations")) {
+    const long long m = friction.integer(*n, "max_iterations");
+    friction.check(m >= 1 && m <= 1'000'000, *n, "max_iterations",
+                   "must be from 1 to 1000000, got " + std::to_string(m));
+    scene.friction.coulomb.max_iterations = static_cast<int>(m);
+  }
+}
+
+}  // namespace
+
+const char* gait_kind(const Gait& gait) {
+  constexpr const char* kNames[] = {"tripod", "metachronal", "undulation", "trot", "disk"};
+  return kNames[gait.index()];
+}
+
+Scene parse_scene(std::string_view text, const std::string& path) {
+  toml::table doc;
+  try {
+    doc = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(origin_of(e.source(), path), std::string(e.description()));
+  }
+  check_top_level(doc, path);
+  const std::vector<TableSchema>& all = schema();
+  Scene scene;
+  scene.path = path;
+
+  // [robot]: which walker; its legs and radius where it has them.
+  const TableReader robot(required_table(doc, "robot", path), schema_of("robot"), path, all);
+  scene.robot =
+      robot.choice(robot.required("name"), "name", {"bigant", "multipod", "quadruped", "disk"});
+  std::string chosen = "name = '";
+  chosen.append(scene.robot).append("'");
+  if (scene.robot != "multipod" && scene.robot != "disk") {
+    robot.forbid("legs", "the multipod and disk robots", chosen);
+  }
+  if (scene.robot != "disk") {
+    robot.forbid("radius", "the disk robot", chosen);
+  }
+
+  // [gait]: the gait of that robot and its parameters.
+  const TableReader gait(required_table(doc, "gait", path), schema_of("gait"), path, all);
+  scene.gait_origin = gait.origin();
+  scene.gait = read_gait(robot, gait, scene.robot);
+
+  // [run] and the effects.
+  read_run(TableReader(required_table(doc, "run", path), schema_of("run"), path, all), scene);
+  read_friction(
+      TableReader(required_table(doc, "friction", path), schema_of("friction"), path, all), scene);
+  if (const toml::table* t = table_of(doc, "filter")) {
+    const TableReader filter(*t, schema_of("filter"), path, all);
+    FilterEffect effect;
+    if (const toml::node* n = filter.find("gamma")) {
+      effect.gamma = filter.number(*n, "gamma");
+      filter.check(effect.gamma >= 0.0 && effect.gamma < 1.0, *n, "gamma",
+                   "must be in [0, 1), got " + core::format_double(effect.gamma));
+    }
+    scene.filter = effect;
+  }
+  return scene;
+}
+
+Scene read_scene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw InputError(path.string(), "cannot read the scene file");
+  }
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return parse_scene(text, path.string());
+}
+
+nlohmann::json to_json(const Scene& scene) {
+  nlohmann::json gait = {{"kind", gait_kind(scene.gait)}};
+  std::visit(
+      [&](const auto& g) {
+        using G = std::decay_t<decltype(g)>;
+        gait["frequency"] = g.frequency;
+        if constexpr (std::is_same_v<G, robots::TripodGait>) {
+          gait["steer"] = g.steer;
+        } else if constexpr (std::is_same_v<G, robots::UndulationGait>) {
+          gait["legs"] = g.legs;
+          gait["dphi"] = g.dphi;
+          gait["roll_amplitude"] = g.roll_amplitude;
+          gait["yaw_amplitude"] = g.yaw_amplitude;
+        } else if constexpr (std::is_same_v<G, robots::DiskGait>) {
+          gait["legs"] = g.legs;
+          gait["radius"] = g.radius;
+        }
+      },
+      scene.gait);
+  nlohmann::json friction = {
+      {"law", scene.friction.law == connection::FrictionLaw::kCoulomb ? "coulomb" : "viscous"}};
+  if (scene.friction.law == connection::FrictionLaw::kCoulomb) {
+    friction["tol"] = scene.friction.coulomb.tol;
+    friction["max_iterations"] = scene.friction.coulomb.max_iterations;
+  }
+  nlohmann::json out = {
+      {"file", scene.path},
+      {"robot", scene.robot},
+      {"gait", gait},
+      {"run", {{"duration", scene.duration}, {"dt", scene.dt}, {"steps", scene.steps}}},
+      {"friction", friction},
+  };
+  if (scene.filter) {
+    out["filter"] = {{"gamma", scene.filter->gamma}};
+  }
+  return out;
+}
+
+}  // namespace slipwalk::scene

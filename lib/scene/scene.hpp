@@ -1,0 +1,109 @@
+#pragma once
+// Scene files (DESIGN.md: "Only the effects a scene calls for"; issues 6 and 8): a TOML file says
+// which robot walks with which gait, for how long, and which effects the run simulates. read_scene
+// validates the whole file first (errors name file:line:col, nothing runs); compose() then builds
+// the simulator once from exactly the named effects.
+//
+//   [robot]                  # required
+//   name = "bigant"          # "bigant" | "multipod" | "quadruped" | "disk"
+//   # legs = 6               # multipod: 6, 8, 10, 12; disk: ≥ 3
+//   # radius = 0.3           # disk only, m
+//
+//   [gait]                   # required
+//   kind = "tripod"          # bigant: "tripod" | "metachronal"; multipod: "undulation";
+//                            # quadruped: "trot"; disk: "disk"
+//   frequency = 0.1          # Hz, > 0 (default: the gait's, robots/robots.hpp)
+//   steer = 0.0              # tripod only, [−1, 1]
+//   # dphi, roll_amplitude, yaw_amplitude  (undulation only, rad)
+//
+//   [run]                    # required
+//   duration = 20.0          # s, > 0
+//   dt = 0.01                # s; or steps = 2000 (exactly one of them)
+//
+//   [friction]               # required
+//   law = "viscous"          # "viscous" (viscous-Coulomb) | "coulomb"
+//   # tol = 1e-10            # coulomb only: the relative duality gap to reach
+//   # max_iterations = 500   # coulomb only
+//
+//   [filter]                 # optional effect: present = on (§3.5.2.2)
+//   gamma = 0.15             # [0, 1), per step; default 0.15
+//
+// Issue 8 adds the effects terrain, anisotropic friction, residual B and noise as further tables.
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "connection/trajectory.hpp"
+#include "robots/robots.hpp"
+
+namespace slipwalk::scene {
+
+/// The robot and its gait: one of the built-in walkers of robots/robots.hpp with its options.
+using Gait = std::variant<robots::TripodGait, robots::MetachronalGait, robots::UndulationGait,
+                          robots::TrotGait, robots::DiskGait>;
+
+/// "tripod", "metachronal", "undulation", "trot", "disk".
+[[nodiscard]] const char* gait_kind(const Gait& gait);
+
+struct FrictionEffect {
+  connection::FrictionLaw law = connection::FrictionLaw::kViscousCoulomb;
+  friction::CoulombOptions coulomb;  ///< used by the coulomb law only
+};
+
+struct FilterEffect {
+  double gamma = 0.15;  ///< per step, [0, 1) (connection::IirFilter)
+};
+
+struct Scene {
+  std::string path;         ///< the file, as named to read_scene (messages, provenance)
+  std::string robot;        ///< "bigant" | "multipod" | "quadruped" | "disk"
+  Gait gait;                ///< the gait's options (legs and radius of multipod/disk included)
+  std::string gait_origin;  ///< file:line:col of [gait], for errors the robot factories raise
+  double duration = 0.0;    ///< s
+  double dt = 0.0;          ///< s
+  long long steps = 0;      ///< duration = steps · dt; steps + 1 frames t = 0 … duration
+  FrictionEffect friction;
+  std::optional<FilterEffect> filter;  ///< present = the inertia filter is on
+};
+
+/// The most steps a scene may ask for (a CSV row each).
+inline constexpr long long kMaxSteps = 10'000'000;
+
+/// Parses a scene from text; `path` names it in messages. Throws core::InputError naming
+/// path:line:col for every error the file can have (syntax, unknown key, wrong type, range,
+/// missing field, a parameter of an effect that is not chosen).
+[[nodiscard]] Scene parse_scene(std::string_view text, const std::string& path);
+
+/// Reads and parses a scene file; an unreadable file is an InputError naming it.
+[[nodiscard]] Scene read_scene(const std::filesystem::path& path);
+
+/// The scene as JSON (provenance sidecars): robot, gait and its parameters, run, effects.
+[[nodiscard]] nlohmann::json to_json(const Scene& scene);
+
+// ---- composition ------------------------------------------------------------------------------
+
+/// A runnable simulator: the walker and the one trajectory kernel (friction law × filter) the
+/// scene calls for, chosen once here; running it never branches on effects that are off.
+struct Simulator {
+  using Kernel = std::function<connection::TrajectorySummary(
+      const robots::Walker&, const connection::TrajectoryOptions&, connection::TrajectoryData&,
+      const connection::TrajectorySink&)>;
+
+  robots::Walker walker;
+  connection::TrajectoryOptions options;  ///< dt, steps from the scene; t0 = 0, start = identity
+  std::string kernel_name;                ///< e.g. "viscous", "coulomb+filter" (provenance)
+  Kernel kernel;
+
+  /// Runs the trajectory into `sink` (allocates the run's buffers once).
+  connection::TrajectorySummary run(const connection::TrajectorySink& sink) const;
+};
+
+/// Builds the walker (robots/robots.hpp) and picks the kernel. A robot factory's InputError is
+/// re-raised naming the scene's [gait] table.
+[[nodiscard]] Simulator compose(const Scene& scene);
+
+}  // namespace slipwalk::scene
