@@ -412,6 +412,7 @@ const std::vector<PointFunction>& registry() {
     for (auto& f : legged_point_functions()) {
       v.push_back(std::move(f));
     }
+    v.push_back(legged_cost_point_function());
     return v;
   }();
   return all;

@@ -35,6 +35,8 @@ struct PointFunction {
 
 /// The multi-legged model's point functions (sweeps/legged_points.cpp), merged into the registry.
 [[nodiscard]] std::vector<PointFunction> legged_point_functions();
+/// The timed cost-and-accuracy point of the multi-legged model (sweeps/legged_cost_points.cpp).
+[[nodiscard]] PointFunction legged_cost_point_function();
 
 /// nullptr if no point function has this name.
 [[nodiscard]] const PointFunction* find_point_function(std::string_view name);

@@ -66,11 +66,11 @@ std::string format_cell(const Cell& cell) {
   return out.str().substr(1);  // drop the header's newline
 }
 
-/// The columns that hold timings (wall_s, cpu_s): written as 0 when timing is off.
+/// The columns that hold timings (wall_s, cpu_s, time_*): written as 0 when timing is off.
 std::vector<bool> timing_columns(const std::vector<std::string>& columns) {
   std::vector<bool> out(columns.size(), false);
   for (std::size_t i = 0; i < columns.size(); ++i) {
-    out[i] = columns[i] == "wall_s" || columns[i] == "cpu_s";
+    out[i] = columns[i] == "wall_s" || columns[i] == "cpu_s" || columns[i].starts_with("time_");
   }
   return out;
 }

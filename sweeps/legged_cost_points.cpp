@@ -1,0 +1,434 @@
+// legged_cost: what one frame of the multi-legged model costs, and how accurate each friction
+// solver is, on random frames of a hexapod or a disk robot (issue 4: cost of accuracy; issue 5:
+// per-frame cost and its growth with the number of legs; thesis §3.6.1 for the thesis' timings).
+//
+// A point builds `frames` random frames (jittered feet, some lifted, random foot velocities) and
+// runs each through contact::spring_support, so the contact sets and loads are the model's own
+// (a hexapod frame has 3–6 feet down). It then
+//  * solves every frame with classical Coulomb friction to a relative duality gap of 1e-14 (the
+//    reference; frames whose reference is not unique or not certified are left out of the error
+//    statistics and counted),
+//  * solves every frame with the point's method and measures the error against the reference,
+//  * times the method: `repeats` times a loop over all frames (each repeat lasting ≥ 0.5 ms, the
+//    frames cycled as often as needed), reporting the median and quartiles over the repeats of
+//    the mean time per frame. All frames are built before the clock starts, so nothing in the
+//    timed loop allocates; timed loops of concurrent points take turns (a mutex), so two timings
+//    never share the cores of one sweep.
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <mutex>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "connection/local_connection.hpp"
+#include "contact/robot.hpp"
+#include "contact/spring_support.hpp"
+#include "core/csv.hpp"
+#include "friction/solvers.hpp"
+#include "sweeps/point_functions.hpp"
+#include "sweeps/point_reader.hpp"
+#include "sweeps/random.hpp"
+
+namespace slipwalk::sweeps {
+
+namespace {
+
+const double kNaN = std::nan("");
+constexpr double kReferenceTol = 1e-14;  // relative duality gap of the reference Coulomb solve
+constexpr double kMinRepeatSeconds = 5e-4;
+constexpr double kBodyWeight = 8.18 * 9.81;  // N: BigANT's 8.18 kg (thesis ch. 4)
+constexpr double kSinkage = 0.01;            // m: static sinkage with every foot down
+constexpr double kHeight = 0.1;              // m: feet this far below the body frame
+
+enum class Method { kViscous, kEpsilon, kCoulomb, kSupport, kConnection, kModel };
+
+const std::vector<std::string_view> kMethodNames = {"viscous", "epsilon",    "coulomb",
+                                                    "support", "connection", "model"};
+
+[[nodiscard]] bool is_friction(Method m) {
+  return m == Method::kViscous || m == Method::kEpsilon || m == Method::kCoulomb;
+}
+
+const std::vector<std::string_view> kCostKeys = {"robot",  "N",    "method",  "eps",   "tol",
+                                                 "frames", "seed", "repeats", "speed", "spread"};
+
+struct CostInputs {
+  std::string robot = "hexapod";
+  int n = 6;
+  Method method = Method::kViscous;
+  double eps = kNaN;
+  double tol = kNaN;
+  long long frames = 200;
+  long long seed = 0;
+  long long repeats = 11;
+  double speed = 0.1;   ///< m/s: the feet's common backward speed relative to the body
+  double spread = 0.5;  ///< relative spread of the feet's velocities around it
+};
+
+CostInputs read_cost(const Point& point) {
+  const Reader r(point, "legged_cost", kCostKeys);
+  CostInputs in;
+  in.robot = r.choice("robot", {"hexapod", "disk"});
+  if (in.robot == "hexapod") {
+    in.n = static_cast<int>(r.integer("N", 6, 6, 6));
+  } else {
+    if (!r.has("N")) {
+      r.fail("N", "required with robot = \"disk\" (the number of legs on the rim)");
+    }
+    in.n = static_cast<int>(r.integer("N", 6, 3, 1000));
+  }
+  const std::string method = r.choice("method", kMethodNames);
+  in.method = static_cast<Method>(std::find(kMethodNames.begin(), kMethodNames.end(), method) -
+                                  kMethodNames.begin());
+  if (in.method == Method::kEpsilon) {
+    if (!r.has("eps")) {
+      r.fail("eps", "required with method = \"epsilon\" (eq. 3.14's ε, m/s)");
+    }
+    in.eps = r.number("eps", 1.0, 0.0, 1e12);
+    in.tol = r.number("tol", friction::EpsilonOptions{}.tol, 0.0, 1.0);
+  } else if (r.has("eps")) {
+    r.fail("eps", "only used with method = \"epsilon\"");
+  }
+  if (in.method == Method::kCoulomb) {
+    in.tol = r.number("tol", friction::CoulombOptions{}.tol, 0.0, 1.0);
+  } else if (in.method != Method::kEpsilon && r.has("tol")) {
+    r.fail("tol", "only used with method = \"epsilon\" or \"coulomb\"");
+  }
+  in.frames = r.integer("frames", 200, 1, 1'000'000);
+  in.seed = r.integer("seed", 0, 0, 1LL << 53);
+  in.repeats = r.integer("repeats", 11, 1, 100'000);
+  in.speed = r.number("speed", 0.1, 0.0, 1e6);
+  in.spread = r.number("spread", 0.5, 0.0, 1e6, true);
+  return in;
+}
+
+// --- robots and frames ---------------------------------------------------------------------------
+
+/// hexapod: BigANT-like, feet at x ∈ {−0.3, 0, 0.3} m, y = ±0.2 m; disk: n feet equally spaced
+/// on a rim of radius 0.3 m (thesis §3.5.3). Both: Mg = 8.18 kg · g, K such that the body sinks
+/// kSinkage with every foot down, μ = 1, isotropic. Returns the nominal foot positions.
+contact::Robot make_robot(const CostInputs& in, Eigen::Matrix3Xd& nominal) {
+  const contact::Robot robot =
+      contact::uniform_robot(in.n, kBodyWeight / (in.n * kSinkage), 1.0, kBodyWeight);
+  nominal.resize(3, in.n);
+  for (int k = 0; k < in.n; ++k) {
+    if (in.robot == "hexapod") {
+      nominal.col(k) << 0.3 * (k / 2 - 1), k % 2 == 0 ? 0.2 : -0.2, -kHeight;
+    } else {
+      const double a = 2.0 * std::numbers::pi * k / in.n;
+      nominal.col(k) << 0.3 * std::cos(a), 0.3 * std::sin(a), -kHeight;
+    }
+  }
+  return robot;
+}
+
+/// Frame i of a point, from its own random stream: every foot jittered by ±2 cm in x and y and
+/// ±2 mm in z, half of them (on average) lifted by 0.5–4 cm as if swinging; drawn again
+/// until the spring support balances (the CoM inside the support polygon). Foot velocities
+/// relative to the body: speed·(−1 + spread·n₁, spread·n₂) plus a common turn of rate
+/// speed·spread·n₃/0.3 m (n_i standard normal), so the body both slides and turns.
+contact::Frame make_frame(const contact::Robot& robot, const Eigen::Matrix3Xd& nominal,
+                          const CostInputs& in, long long i) {
+  Random rng(static_cast<std::uint64_t>(in.seed), static_cast<std::uint64_t>(i));
+  contact::Frame f(robot);
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    for (int k = 0; k < in.n; ++k) {
+      const bool swing = rng.uniform() < 0.5;
+      f.q.col(k) =
+          nominal.col(k) + Eigen::Vector3d(rng.uniform(-0.02, 0.02), rng.uniform(-0.02, 0.02),
+                                           rng.uniform(-0.002, 0.002));
+      if (swing) {
+        f.q(2, k) += rng.uniform(0.005, 0.04);
+      }
+    }
+    contact::spring_support(robot, f);
+    if (f.support.status == contact::SupportSummary::Status::kBalanced) {
+      break;
+    }
+  }
+  const double turn = in.speed * in.spread * rng.normal() / 0.3;
+  for (int k = 0; k < in.n; ++k) {
+    f.qdot.col(k) << in.speed * (-1.0 + in.spread * rng.normal()) - turn * f.q(1, k),
+        in.speed * in.spread * rng.normal() + turn * f.q(0, k), 0.0;
+  }
+  return f;
+}
+
+// --- solving, timing, errors ---------------------------------------------------------------------
+
+void solve(const contact::Robot& robot, contact::Frame& f, const CostInputs& in) {
+  switch (in.method) {
+    case Method::kViscous:
+      friction::solve_viscous_coulomb(robot, f);
+      break;
+    case Method::kEpsilon:
+      friction::solve_epsilon(robot, f, in.eps, friction::EpsilonOptions{in.tol});
+      break;
+    case Method::kCoulomb:
+      friction::solve_coulomb(robot, f, friction::CoulombOptions{in.tol});
+      break;
+    case Method::kSupport:
+      contact::spring_support(robot, f);
+      break;
+    case Method::kConnection:
+      connection::local_connection(robot, f);
+      break;
+    case Method::kModel:
+      connection::evaluate(robot, f, connection::FrictionLaw::kViscousCoulomb);
+      break;
+  }
+}
+
+struct Timing {
+  double median = kNaN;  ///< ns per frame
+  double p25 = kNaN;
+  double p75 = kNaN;
+};
+
+/// Linear interpolation between order statistics (numpy's default percentile); v sorted.
+double quantile(const std::vector<double>& v, double p) {
+  if (v.empty()) {
+    return kNaN;
+  }
+  const double x = p * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(x));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (x - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+/// The calling thread's CPU time: unlike wall time it does not count the time the thread waits
+/// for a core, which on a shared machine is most of the noise.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// Mean CPU time per frame of the method over all frames, `repeats` times; the frames were solved
+/// once already (warm caches, and the outputs the errors are computed from).
+Timing time_method(const contact::Robot& robot, std::vector<contact::Frame>& frames,
+                   const CostInputs& in) {
+  static std::mutex one_timing_at_a_time;
+  const std::lock_guard<std::mutex> lock(one_timing_at_a_time);
+  const auto pass = [&] {
+    for (contact::Frame& f : frames) {
+      solve(robot, f, in);
+    }
+  };
+  // How many passes make one repeat last kMinRepeatSeconds (the clock's resolution and the
+  // loop's overhead then do not matter).
+  double t0 = thread_cpu_seconds();
+  pass();
+  const double once = thread_cpu_seconds() - t0;
+  const long long passes =
+      std::clamp(static_cast<long long>(std::ceil(kMinRepeatSeconds / std::max(once, 1e-9))), 1LL,
+                 1'000'000LL);
+  std::vector<double> per_frame;
+  per_frame.reserve(static_cast<std::size_t>(in.repeats));
+  for (long long r = 0; r < in.repeats; ++r) {
+    t0 = thread_cpu_seconds();
+    for (long long p = 0; p < passes; ++p) {
+      pass();
+    }
+    const double s = thread_cpu_seconds() - t0;
+    per_frame.push_back(1e9 * s / static_cast<double>(passes * in.frames));
+  }
+  std::sort(per_frame.begin(), per_frame.end());
+  return {quantile(per_frame, 0.5), quantile(per_frame, 0.25), quantile(per_frame, 0.75)};
+}
+
+struct Errors {
+  std::vector<double> v;  ///< per frame: ‖(Δv_x, Δv_y, L Δω)‖ / V
+  std::vector<double> F;  ///< per frame: max_k ‖ΔF_k‖ / (μ_k F_z,k)
+  long long nonunique = 0;
+  long long ref_unconverged = 0;
+};
+
+/// The error of a solved frame against the reference. V = the fastest foot in contact (‖q̇_k‖),
+/// L = the largest lever arm of a foot in contact, so Δω is weighed by the speed it gives a foot.
+/// The viscous-type laws (viscous-Coulomb, the ε-family) give forces in their own units
+/// (−μ F_z u, in N·s/m): like the thesis (§3.5.1.4, one positive scale σ per frame fitted to the
+/// measured forces) their forces are compared after the least-squares σ = Σ F·F_ref / Σ ‖F‖².
+void add_error(const contact::Robot& robot, const contact::Frame& f, const contact::Frame& ref,
+               bool scaled, Errors& e) {
+  if (!ref.friction.converged) {
+    ++e.ref_unconverged;
+    return;
+  }
+  if (!ref.friction.unique) {
+    ++e.nonunique;
+    return;
+  }
+  double sigma = 1.0;
+  if (scaled) {
+    const double den = f.Fxy.squaredNorm();
+    sigma = den > 0.0 ? (f.Fxy.array() * ref.Fxy.array()).sum() / den : 1.0;
+  }
+  double V = 0.0;
+  double L = 0.0;
+  double dF = 0.0;
+  for (int k = 0; k < f.legs(); ++k) {
+    if (f.contact[static_cast<std::size_t>(k)] == 0) {
+      continue;
+    }
+    V = std::max(V, f.qdot.col(k).head<2>().norm());
+    L = std::max(L, f.q.col(k).head<2>().norm());
+    const double c = robot.mu(k) * f.Fz(k);
+    if (c > 0.0) {
+      dF = std::max(dF, (sigma * f.Fxy.col(k) - ref.Fxy.col(k)).norm() / c);
+    }
+  }
+  const Eigen::Vector3d d = f.v_body - ref.v_body;
+  e.v.push_back(V > 0.0 ? std::hypot(d(0), d(1), L * d(2)) / V : 0.0);
+  e.F.push_back(dF);
+}
+
+struct Stats {
+  double median = kNaN;
+  double p95 = kNaN;
+  double max = kNaN;
+};
+
+Stats stats(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  if (x.empty()) {
+    return {};
+  }
+  return {quantile(x, 0.5), quantile(x, 0.95), x.back()};
+}
+
+const std::vector<std::string> kCostColumns = {"id",
+                                               "robot",
+                                               "N",
+                                               "method",
+                                               "eps",
+                                               "tol",
+                                               "frames",
+                                               "seed",
+                                               "repeats",
+                                               "contacts_mean",
+                                               "contacts_min",
+                                               "contacts_max",
+                                               "time_ns",
+                                               "time_ns_p25",
+                                               "time_ns_p75",
+                                               "err_v_median",
+                                               "err_v_p95",
+                                               "err_v_max",
+                                               "err_F_median",
+                                               "err_F_p95",
+                                               "err_F_max",
+                                               "error_frames",
+                                               "nonunique",
+                                               "ref_unconverged",
+                                               "ref_static_mean",
+                                               "iterations_mean",
+                                               "unconverged",
+                                               "message"};
+
+// One row per point. Errors are NaN for the methods that compute no friction balance (support,
+// connection, model); contacts_* count the feet down per frame; iterations_mean and unconverged
+// are the method's own (friction.iterations and !friction.converged; spring support: its
+// iterations). The time_* columns are the only ones that vary between runs (written as 0 with
+// --no-timing).
+PointResult run_cost(const Point& point) {
+  const CostInputs in = read_cost(point);
+  Eigen::Matrix3Xd nominal;
+  const contact::Robot robot = make_robot(in, nominal);
+  std::vector<contact::Frame> frames;
+  frames.reserve(static_cast<std::size_t>(in.frames));
+  for (long long i = 0; i < in.frames; ++i) {
+    frames.push_back(make_frame(robot, nominal, in, i));
+  }
+
+  // The reference and the method's own answer, frame by frame.
+  Errors errors;
+  long long contacts_sum = 0;
+  long long contacts_min = in.n;
+  long long contacts_max = 0;
+  long long iterations = 0;
+  long long unconverged = 0;
+  long long ref_static = 0;
+  contact::Frame ref(robot);
+  for (contact::Frame& f : frames) {
+    long long down = 0;
+    for (char c : f.contact) {
+      down += c != 0 ? 1 : 0;
+    }
+    contacts_sum += down;
+    contacts_min = std::min(contacts_min, down);
+    contacts_max = std::max(contacts_max, down);
+    solve(robot, f, in);
+    if (in.method == Method::kSupport) {
+      iterations += f.support.iterations;
+      unconverged += f.support.status == contact::SupportSummary::Status::kIterationLimit ? 1 : 0;
+    } else if (is_friction(in.method)) {
+      iterations += f.friction.iterations;
+      unconverged += f.friction.converged ? 0 : 1;
+      ref = f;
+      friction::solve_coulomb(robot, ref, friction::CoulombOptions{kReferenceTol});
+      ref_static += ref.friction.static_feet;
+      add_error(robot, f, ref, in.method != Method::kCoulomb, errors);
+    }
+  }
+  const Timing t = time_method(robot, frames, in);
+  const Stats ev = stats(errors.v);
+  const Stats eF = stats(errors.F);
+  const double nf = static_cast<double>(in.frames);
+  const bool friction = is_friction(in.method);
+  std::string message;
+  if (unconverged > 0) {
+    message = std::to_string(unconverged) + " of " + std::to_string(in.frames) +
+              " frames did not converge";
+  }
+  if (errors.ref_unconverged > 0) {
+    message += message.empty() ? "" : "; ";
+    message += std::to_string(errors.ref_unconverged);
+    message += " reference solves not certified to 1e-14";
+  }
+  PointResult out;
+  out.rows.push_back(Row{point.id,
+                         in.robot,
+                         static_cast<long long>(in.n),
+                         std::string(kMethodNames[static_cast<std::size_t>(in.method)]),
+                         in.eps,
+                         in.tol,
+                         in.frames,
+                         in.seed,
+                         in.repeats,
+                         static_cast<double>(contacts_sum) / nf,
+                         contacts_min,
+                         contacts_max,
+                         t.median,
+                         t.p25,
+                         t.p75,
+                         ev.median,
+                         ev.p95,
+                         ev.max,
+                         eF.median,
+                         eF.p95,
+                         eF.max,
+                         static_cast<long long>(errors.v.size()),
+                         errors.nonunique,
+                         errors.ref_unconverged,
+                         friction ? static_cast<double>(ref_static) / nf : kNaN,
+                         static_cast<double>(iterations) / nf,
+                         unconverged,
+                         message});
+  return out;
+}
+
+}  // namespace
+
+PointFunction legged_cost_point_function() {
+  return {"legged_cost",
+          "§3.6.1, issues 4 and 5: time per frame and error against a 1e-14 Coulomb reference of "
+          "a friction solver (or the support search, the connection, the whole model) on random "
+          "frames of a hexapod or a disk robot (one row per point)",
+          kCostColumns, [](const Point& p) { (void)read_cost(p); }, run_cost};
+}
+
+}  // namespace slipwalk::sweeps

@@ -1,0 +1,180 @@
+// The timed cost-and-accuracy point (sweeps/legged_cost_points.cpp): check() rejects bad keys
+// naming them; on small cases (a hexapod and a 12-leg disk, a few random frames) each friction
+// solver's error against the tight Coulomb reference shrinks as its knob tightens — the Coulomb
+// solver's certificate target tol and the ε of eq. 3.14 — monotone within a factor, and the rows
+// other than the timings are deterministic. No timing is asserted (the timing columns are only
+// read for being present).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "sweeps/point_functions.hpp"
+#include "sweeps/spec.hpp"
+
+namespace slipwalk::sweeps {
+namespace {
+
+const PointFunction& fn() {
+  const PointFunction* f = find_point_function("legged_cost");
+  if (f == nullptr) {
+    throw std::runtime_error("no point function legged_cost");
+  }
+  return *f;
+}
+
+std::vector<Point> points(const std::string& body) {
+  return expand(
+      parse_spec("study = \"t\"\nname = \"t\"\nkind = \"legged_cost\"\n" + body, "cost.toml"));
+}
+
+std::size_t col(const std::string& name) {
+  const auto& c = fn().columns;
+  const auto it = std::find(c.begin(), c.end(), name);
+  if (it == c.end()) {
+    throw std::runtime_error("no column " + name);
+  }
+  return static_cast<std::size_t>(it - c.begin());
+}
+
+double num(const Row& r, const std::string& name) {
+  const Cell& c = r[col(name)];
+  if (const auto* d = std::get_if<double>(&c)) {
+    return *d;
+  }
+  return static_cast<double>(std::get<long long>(c));
+}
+
+/// The single row of each point, checked first.
+std::vector<Row> run(const std::string& body) {
+  std::vector<Row> rows;
+  for (const Point& p : points(body)) {
+    fn().check(p);
+    PointResult r = fn().run(p);
+    EXPECT_FALSE(r.failed) << r.message;
+    EXPECT_EQ(r.rows.size(), 1u);
+    EXPECT_EQ(r.rows.at(0).size(), fn().columns.size());
+    rows.push_back(r.rows.at(0));
+  }
+  return rows;
+}
+
+const std::vector<std::string> kRobots = {"robot = \"hexapod\"\n", "robot = \"disk\"\nN = 12\n"};
+
+TEST(LeggedCost, RejectsBadKeysNamingThem) {
+  const auto rejects = [](const std::string& body, const std::string& key) {
+    const std::vector<Point> pts = points(body);
+    ASSERT_EQ(pts.size(), 1u);
+    try {
+      fn().check(pts[0]);
+      ADD_FAILURE() << "accepted: " << body;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  rejects("[params]\nmethod = \"coulomb\"\neps = 0.1\n", "eps");
+  rejects("[params]\nmethod = \"epsilon\"\n", "eps");
+  rejects("[params]\nmethod = \"epsilon\"\neps = 0.0\n", "eps");
+  rejects("[params]\nmethod = \"viscous\"\ntol = 1e-9\n", "tol");
+  rejects("[params]\nmethod = \"newton\"\n", "method");
+  rejects("[params]\nrobot = \"hexapod\"\nN = 8\n", "N");
+  rejects("[params]\nrobot = \"disk\"\n", "N");
+  rejects("[params]\nrobot = \"disk\"\nN = 2\n", "N");
+  rejects("[params]\nframes = 0\n", "frames");
+  rejects("[params]\nlegs = 6\n", "legs");
+}
+
+// Coulomb to a relative duality gap tol: the error against the 1e-14 reference falls as tol
+// tightens. The gap bounds D(v) − D(v*), which grows at least quadratically away from a smooth
+// minimum, so ‖Δv‖ ≲ √tol (and ~tol at a kink, a static foot); allow a factor 10 for the
+// non-monotone steps of an active-set method (one more polish step can land anywhere below tol).
+TEST(LeggedCost, CoulombErrorShrinksAsTolTightens) {
+  for (const std::string& robot : kRobots) {
+    const std::vector<Row> rows =
+        run("[params]\nmethod = \"coulomb\"\nframes = 6\nrepeats = 1\nseed = 3\n" + robot +
+            "[axes]\ntol = { logspace = [1e-2, 1e-12], n = 6 }\n");
+    ASSERT_EQ(rows.size(), 6u);
+    double prev_v = INFINITY;
+    double prev_F = INFINITY;
+    for (const Row& r : rows) {
+      const double tol = num(r, "tol");
+      const double ev = num(r, "err_v_max");
+      const double eF = num(r, "err_F_max");
+      SCOPED_TRACE(robot + " tol " + std::to_string(tol));
+      EXPECT_EQ(num(r, "error_frames") + num(r, "nonunique") + num(r, "ref_unconverged"), 6.0);
+      EXPECT_GE(num(r, "error_frames"), 4.0);
+      EXPECT_EQ(num(r, "unconverged"), 0.0);
+      EXPECT_LE(ev, 10.0 * prev_v + 1e-12);
+      EXPECT_LE(eF, 10.0 * prev_F + 1e-12);
+      EXPECT_LE(ev, 10.0 * std::sqrt(tol));
+      prev_v = ev;
+      prev_F = eF;
+    }
+    // The gap weighs a foot by its load, the force error does not (a lightly loaded foot's force
+    // direction costs little dissipation): no rate for it, but it must vanish too.
+    EXPECT_LT(num(rows.back(), "err_v_max"), 1e-5);
+    EXPECT_LT(num(rows.back(), "err_F_max"), 1e-6);
+  }
+}
+
+// The ε-family of eq. 3.14 tends to Coulomb friction as ε → 0 (and to viscous-Coulomb as
+// ε → ∞): its error against the Coulomb reference falls with ε, monotone within a factor, from
+// about the viscous-Coulomb error at ε = 10 m/s (≫ the feet's 0.1 m/s). Rate: the force
+// magnitude s φ(s) = s (ε + s)/(ε + s²) is ≈ s²/ε for ε ≪ s ≪ √ε and reaches Coulomb's 1 only
+// for s ≫ √ε, so a foot that Coulomb friction holds static slips at s ~ √ε: err_v ~ √ε / V.
+TEST(LeggedCost, EpsilonErrorShrinksAsEpsilonFallsAndViscousIsTheLimit) {
+  for (const std::string& robot : kRobots) {
+    const std::string common = "frames = 6\nrepeats = 1\nseed = 3\n" + robot;
+    const std::vector<Row> viscous = run("[params]\nmethod = \"viscous\"\n" + common);
+    const std::vector<Row> rows = run("[params]\nmethod = \"epsilon\"\n" + common +
+                                      "[axes]\neps = { logspace = [1e1, 1e-6], n = 8 }\n");
+    ASSERT_EQ(rows.size(), 8u);
+    const double visc = num(viscous[0], "err_v_median");
+    SCOPED_TRACE(robot);
+    EXPECT_GT(visc, 1e-3);  // the ansatz is a different law: not a vanishing error
+    EXPECT_NEAR(num(rows.front(), "err_v_median"), visc, 0.1 * visc);
+    double prev = INFINITY;
+    for (const Row& r : rows) {
+      const double eps = num(r, "eps");
+      const double e = num(r, "err_v_median");
+      EXPECT_LE(e, 3.0 * prev) << "eps " << eps;
+      if (eps <= 1e-3) {
+        EXPECT_LE(e, 20.0 * std::sqrt(eps)) << "eps " << eps;  // V ≈ 0.1 m/s
+      }
+      EXPECT_EQ(num(r, "unconverged"), 0.0);
+      prev = e;
+    }
+    // ε / 100 → the error falls ≥ 3× (√100 = 10× at the rate above), and ends far below viscous.
+    EXPECT_LE(num(rows[7], "err_v_median"), 0.3 * num(rows[5], "err_v_median"));
+    EXPECT_LT(num(rows.back(), "err_v_median"), 0.1 * visc);
+  }
+}
+
+TEST(LeggedCost, RowsAreDeterministicApartFromTimings) {
+  const std::string body =
+      "[params]\nrobot = \"disk\"\nN = 12\nframes = 5\nrepeats = 2\n"
+      "[axes]\nmethod = [\"viscous\", \"support\", \"model\"]\n";
+  const std::vector<Row> a = run(body);
+  const std::vector<Row> b = run(body);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = 0; j < a[i].size(); ++j) {
+      if (fn().columns[j].rfind("time_", 0) == 0) {
+        continue;  // the timings, and only they, vary
+      }
+      EXPECT_TRUE(a[i][j] == b[i][j] ||
+                  (std::holds_alternative<double>(a[i][j]) &&
+                   std::isnan(std::get<double>(a[i][j])) && std::isnan(std::get<double>(b[i][j]))))
+          << fn().columns[j];
+    }
+    // The frames are the model's own: at least three feet down, some lifted.
+    EXPECT_GE(num(a[i], "contacts_min"), 3.0);
+  }
+  EXPECT_TRUE(std::isnan(num(a[1], "err_v_max")));  // support: no friction balance
+}
+
+}  // namespace
+}  // namespace slipwalk::sweeps
