@@ -75,6 +75,11 @@ SCRIPTS.append("cost_of_accuracy")
 SCRIPT_STUDY["cost_of_accuracy"] = "cost_of_accuracy"
 STUDIES.append("cost_of_accuracy")
 COST_PAGE = "cost_of_accuracy.html"
+# The multi-legged model (issues 4 and 5): the friction solvers' section of the cost page
+# (cost_friction_body.html) and the per-frame cost in the index's performance section
+# (perf_legged_body.html).
+SCRIPTS += ["cost_friction", "perf_legged"]
+SCRIPT_STUDY.update({"cost_friction": "cost_of_accuracy", "perf_legged": "ch3_legged"})
 
 
 # ---------------------------------------------------------------------------------------------
@@ -406,6 +411,8 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
     missing = "<p class='bad'>Not built: the data folder <code>{}</code> is missing.</p>"
     perf_table = ((staging / "performance_table.html").read_text()
                   if (staging / "performance_table.html").is_file() else missing.format(c.STUDY))
+    perf_legged = ((staging / "perf_legged_body.html").read_text()
+                   if (staging / "perf_legged_body.html").is_file() else missing.format("ch3_legged"))
     stab_table = ((staging / "stability_table.html").read_text()
                   if (staging / "stability_table.html").is_file() else missing.format(c.STUDY))
     v = values.by_script
@@ -469,7 +476,7 @@ ansatz (eq. 3.14 with ε → ∞) is a 3 × 3 linear solve, the local connection
 thesis gives no numbers for the robots of Figs. 3.2–3.4; ours are frame files in
 <code>studies/ch3_legged/</code>, chosen to show the same effects. The experiments of §3.5
 (BigANT, Multipod, Spirit, MuJoCo) need data we do not have; the speed of the solvers is measured
-by the benchmarks (performance page), not here. Verdicts of chapter 3: {summary3}</p>
+by a timed study (performance page and cost of accuracy page), not here. Verdicts of chapter 3: {summary3}</p>
 {''.join(figs_3) or "<p>No chapter 3 figures in the ledger.</p>"}
 </section>
 <section id="ledger"><h2>Claims ledger</h2>
@@ -485,7 +492,8 @@ evaluations, each method over its tolerances, at F = 45 N, μ = 1 (fast converge
 F = 73.575 N, μ = 0.05 (slowest convergence of the range). The table gives the cheapest run of each
 method that reaches the target error. Every integrator over ten decades of tolerance, both models,
 the fixed-step method without event location and the three error sources separated: the
-<a href="cost_of_accuracy.html">cost of accuracy</a> page.</p>{perf_table}</div></div></section>
+<a href="cost_of_accuracy.html">cost of accuracy</a> page.</p>{perf_table}</div></div>
+{perf_legged}</section>
 <section id="stability"><h2>Stability — hard cases</h2>
 <div class="fig wide"><img src="stability.png" alt="hard cases">
 <div class="text"><p>Each hard case run by every method; the closed form ("exact") is the reference.
@@ -506,6 +514,8 @@ def cost_page(staging: Path, quick: bool) -> str:
     body = (body_file.read_text() if body_file.is_file() else
             "<p class='bad'>Not built: the data folder <code>cost_of_accuracy</code> is missing "
             "(run <code>slipwalk reproduce cost_of_accuracy</code>).</p>")
+    legged_file = staging / "cost_friction_body.html"
+    body += legged_file.read_text() if legged_file.is_file() else ""
     quick_banner = ("<div class='quick'>Quick run: one repeat and a few tolerances per method; "
                     "timings and tables are not those of the full study.</div>") if quick else ""
     return f"""<!DOCTYPE html>
@@ -514,9 +524,10 @@ def cost_page(staging: Path, quick: bool) -> str:
 <style>{CSS}</style></head><body>
 <header><h1>slipwalk — cost of accuracy{' — quick run' if quick else ''}</h1>
 <div class="sub">What each integrator of the hybrid layer costs to reach a given error in the
-inchworm's steady speed, and where the error comes from. From <code>studies/cost_of_accuracy/</code>
-and <code>reports/cost_of_accuracy.py</code>.</div></header>
-<nav><a href="index.html">Report index</a><a href="#coa-wp">Work–precision</a><a href="#coa-sources">Error sources</a><a href="#coa-pick">Which method</a><a href="index.html#performance">Performance</a><a href="index.html#provenance">Provenance</a></nav>
+inchworm's steady speed, and where the error comes from; what each friction solver of the
+multi-legged model costs per frame for its accuracy. From <code>studies/cost_of_accuracy/</code>,
+<code>reports/cost_of_accuracy.py</code> and <code>reports/cost_friction.py</code>.</div></header>
+<nav><a href="index.html">Report index</a><a href="#coa-wp">Work–precision</a><a href="#coa-sources">Error sources</a><a href="#coa-pick">Which method</a><a href="#coa-legged">Multi-legged friction</a><a href="index.html#performance">Performance</a><a href="index.html#provenance">Provenance</a></nav>
 <main>
 {quick_banner}
 {body}
