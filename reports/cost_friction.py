@@ -296,8 +296,9 @@ def paragraphs(v: dict) -> list[tuple[str, str]]:
                 f"{f2(g(f'{h}_ref_static_mean'))} feet static per hexapod frame on average and "
                 f"{f2(g(f'{d}_ref_static_mean'))} per disk frame")
     slower = [g(f"{k}_epsilon_smallest_over_coulomb_tightest") for k in (h, d)]
-    direct = ("both cheaper and exact" if all(x is not None and x > 1 for x in slower) else
-              "exact at a comparable cost")
+    direct = ("both cheaper and certified to any tolerance"
+              if all(x is not None and x > 1 for x in slower) else
+              "certified to any tolerance at a comparable cost")
     loose = [g(f"{k}_coulomb_tight_over_loose") for k in (h, d)]
     flat = all(x is not None and x < 2 for x in loose)
     return [
