@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "sweeps/runner.hpp"
 #include "sweeps/spec.hpp"
+#include "sweeps/study.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -411,17 +412,17 @@ TEST(Spec, ModelAndAlphaRejected) {
 /// Every study spec in the repository loads and checks, full and quick.
 TEST(Spec, StudySpecsLoad) {
   const std::filesystem::path dir = std::filesystem::path(SLIPWALK_SOURCE_DIR) / "studies";
+  // Every sweep spec a study lists (a study folder may also hold scenes and robot files).
   int specs = 0;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
-    if (entry.path().extension() != ".toml" || entry.path().filename() == "study.toml") {
-      continue;
-    }
-    ++specs;
-    for (bool quick : {false, true}) {
-      const PreparedSweep p = prepare(load_spec(entry.path(), quick));
-      EXPECT_GT(p.points.size(), 0U) << entry.path();
-      if (quick) {
-        EXPECT_LE(p.points.size(), 200U) << entry.path();
+  for (const auto& study_dir : find_studies(dir)) {
+    for (const auto& spec : load_study(study_dir).sweeps) {
+      ++specs;
+      for (bool quick : {false, true}) {
+        const PreparedSweep p = prepare(load_spec(spec, quick));
+        EXPECT_GT(p.points.size(), 0U) << spec;
+        if (quick) {
+          EXPECT_LE(p.points.size(), 200U) << spec;
+        }
       }
     }
   }
