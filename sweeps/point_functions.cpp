@@ -413,6 +413,9 @@ const std::vector<PointFunction>& registry() {
       v.push_back(std::move(f));
     }
     v.push_back(legged_cost_point_function());
+    for (auto& f : peer_point_functions()) {
+      v.push_back(std::move(f));
+    }
     return v;
   }();
   return all;

@@ -37,6 +37,8 @@ struct PointFunction {
 [[nodiscard]] std::vector<PointFunction> legged_point_functions();
 /// The timed cost-and-accuracy point of the multi-legged model (sweeps/legged_cost_points.cpp).
 [[nodiscard]] PointFunction legged_cost_point_function();
+/// The speed comparisons of §3.5.3, Fig. 3.13: MuJoCo peer and parallel steps (peer_points.cpp).
+[[nodiscard]] std::vector<PointFunction> peer_point_functions();
 
 /// nullptr if no point function has this name.
 [[nodiscard]] const PointFunction* find_point_function(std::string_view name);
