@@ -40,6 +40,12 @@ SCRIPT_STUDY = {"fig2_6": "ch2_dm_swap", "fig2_7": "ch2_dm_swap", "regime_map": 
 STUDIES = [c.STUDY, "ch2_dm_swap", "ch3_legged"]
 # Figures shown full width (several panels side by side).
 WIDE = {"eq2_6", "fig2_6", "fig2_7", "regime_map", "fig3_1", "fig3_2", "fig3_3_4", "fig3_15"}
+# §3.5.3, Fig. 3.13 (issue 7): MuJoCo as the peer and the parallel overhead, shown in the
+# performance section ([[figure]] part = "performance").
+SCRIPTS.append("fig3_13")
+SCRIPT_STUDY["fig3_13"] = "ch3_peer"
+STUDIES.append("ch3_peer")
+WIDE.add("fig3_13")
 # What the thesis leaves open in the dm model (lib/inchworm/mass_swap.hpp), stated on the page.
 DM_CHOICES = [
     "Stroke phase: Δm rides locked on one end mass (then \"M\", y); the stroke is exactly the "
@@ -382,10 +388,12 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
     figs = []
     figs_25 = []
     figs_3 = []
+    figs_perf = []
     for fg in ledger.get("figure", []):
         script = fg["script"]
         part = str(fg.get("part", ""))
-        target = figs_25 if part == "2.5" else figs_3 if part == "3" else figs
+        target = (figs_25 if part == "2.5" else figs_3 if part == "3" else
+                  figs_perf if part == "performance" else figs)
         linked = [by_id[i] for i in fg.get("claims", []) if i in by_id]
         table = ""
         if fg.get("table") and (staging / fg["table"]).is_file():
@@ -486,6 +494,7 @@ computed by the scripts from the data; the verdict is computed from the rule in 
 {ledger_rows}
 </tbody></table></section>
 <section id="performance"><h2>Performance — what accuracy costs</h2>
+{''.join(figs_perf)}
 <div class="fig wide"><img src="performance.png" alt="work-precision">
 <div class="text"><p>Relative error against the closed form vs wall time and vs right-hand-side
 evaluations, each method over its tolerances, at F = 45 N, μ = 1 (fast convergence) and
