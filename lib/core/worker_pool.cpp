@@ -1,5 +1,6 @@
 #include "core/worker_pool.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "core/error.hpp"
@@ -28,24 +29,41 @@ WorkerPool::~WorkerPool() {
 }
 
 // Claims tasks one at a time. The claim is under the mutex: tasks here are blocks of hundreds of
-// model evaluations, so one uncontended lock per task is noise.
+// model evaluations, so two uncontended locks per task are noise. A worker touches task_ only
+// after claiming a task of the current run, and run() returns only when every claimed task has
+// finished, so a late worker never sees a stale task.
 void WorkerPool::drain(int worker) {
   for (;;) {
     int i = 0;
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      if (next_ >= tasks_ || error_) {
+      if (next_ >= tasks_) {
         return;
       }
       i = next_++;
     }
+    bool failed = false;
     try {
       (*task_)(i, worker);
     } catch (...) {
+      failed = true;
       const std::lock_guard<std::mutex> lock(mutex_);
       if (!error_) {
         error_ = std::current_exception();
       }
+    }
+    bool all_done = false;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      ++done_;
+      if (failed) {  // the tasks nobody claimed yet are skipped
+        done_ += tasks_ - next_;
+        next_ = tasks_;
+      }
+      all_done = done_ == tasks_;
+    }
+    if (all_done) {
+      done_cv_.notify_all();
     }
   }
 }
@@ -62,11 +80,6 @@ void WorkerPool::work(int worker) {
       seen = generation_;
     }
     drain(worker);
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      --busy_;
-    }
-    done_.notify_one();
   }
 }
 
@@ -74,18 +87,20 @@ void WorkerPool::run(int n, const Task& task) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     task_ = &task;
-    tasks_ = n;
+    tasks_ = std::max(n, 0);
     next_ = 0;
+    done_ = 0;
     error_ = nullptr;
-    busy_ = static_cast<int>(workers_.size());
     ++generation_;
   }
-  start_.notify_all();
+  if (!workers_.empty()) {
+    start_.notify_all();
+  }
   drain(0);
   std::exception_ptr error;
   {
     std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [&] { return busy_ == 0; });
+    done_cv_.wait(lock, [&] { return done_ == tasks_; });
     task_ = nullptr;
     error = error_;
   }

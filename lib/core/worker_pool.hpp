@@ -8,7 +8,9 @@
 // claimed in order from a shared counter, so which worker runs which task varies; results are
 // deterministic when each task writes only its own outputs (and uses `worker` only to pick its
 // scratch space). The calling thread takes part as worker 0, so a pool of one thread runs
-// everything inline.
+// everything inline. run() returns as soon as every task has finished, without waiting for
+// workers that were never scheduled: on a busy machine a sleeping worker may wake milliseconds
+// late, and then the caller has simply done its share.
 #include <condition_variable>
 #include <exception>
 #include <functional>
@@ -41,11 +43,11 @@ class WorkerPool {
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable start_;
-  std::condition_variable done_;
+  std::condition_variable done_cv_;
   const Task* task_ = nullptr;
   int tasks_ = 0;
   int next_ = 0;              ///< the next unclaimed task (under mutex_)
-  int busy_ = 0;              ///< workers still inside the current run
+  int done_ = 0;              ///< tasks finished (or skipped after an error) in this run
   long long generation_ = 0;  ///< counts run() calls; workers wake on a new one
   bool stop_ = false;
   std::exception_ptr error_;
