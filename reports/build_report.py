@@ -483,8 +483,9 @@ the total dissipation (a convex problem, with an optimality certificate); the vi
 ansatz (eq. 3.14 with ε → ∞) is a 3 × 3 linear solve, the local connection of eq. 3.20. The
 thesis gives no numbers for the robots of Figs. 3.2–3.4; ours are frame files in
 <code>studies/ch3_legged/</code>, chosen to show the same effects. The experiments of §3.5
-(BigANT, Multipod, Spirit, MuJoCo) need data we do not have; the speed of the solvers is measured
-by a timed study (performance page and cost of accuracy page), not here. Verdicts of chapter 3: {summary3}</p>
+(BigANT, Multipod, Spirit) need data we do not have; the speed of the solvers is measured
+by a timed study (performance page and cost of accuracy page), not here, and so is the speed
+comparison with MuJoCo as the peer simulator (Fig. 3.13, performance page). Verdicts of chapter 3: {summary3}</p>
 {''.join(figs_3) or "<p>No chapter 3 figures in the ledger.</p>"}
 </section>
 <section id="ledger"><h2>Claims ledger</h2>
