@@ -13,7 +13,8 @@ Panels: (a) time per step normalized by each simulator's median at N = 3, percen
 step; (c) the ratio MuJoCo / ours per configuration; (d) the parallel overhead time x M / median
 single-thread time over the trajectories, for the thesis' pipeline (steps in parallel, poses
 composed sequentially) and with the parallel prefix product; M beyond the machine's cores is
-marked oversubscribed. In a build without MuJoCo the MuJoCo columns are NaN: the panels show our
+marked oversubscribed; the CPU time of all threads over the single-thread CPU time shows the work
+threading adds, whatever else the machine ran. In a build without MuJoCo the MuJoCo columns are NaN: the panels show our
 side and say so.
 """
 from __future__ import annotations
@@ -162,11 +163,20 @@ def parallel(t: c.Table, side: dict, values: dict, ax) -> None:
     values["scan_max_diff"] = float(np.max(t["scan_max_diff"]))
     values["deterministic"] = bool(np.all(t["same_as_one_thread"] == 1))
     values["unsupported_frames"] = int(np.sum(t["unsupported"][one]))
+    # The work done: CPU time of all threads / median single-thread CPU time (1 = no extra work;
+    # unlike wall time it does not depend on whether the machine had M free cores).
+    cpu = t["time_cpu_increments_ns"] + seq
+    base_cpu = float(np.median(cpu[one]))
+    q_cpu = [pct(cpu[M == m] / base_cpu) for m in Ms]
+    values["cpu_overhead_median"] = [q[2] for q in q_cpu]
+    values["cpu_overhead_at_cores"] = q_cpu[at - 1][2]
     values["prefix_product_ok"] = bool(values["scan_max_diff"] <= 1e-12 and values["deterministic"]
                                        and values["product_gain_at_cores"] > 1.0)
     ribbon(ax, Ms - 0.06, q_seq, "tab:green", "steps on M threads, poses composed sequentially "
            "(thesis)")
     ribbon(ax, Ms + 0.06, q_scan, "tab:red", "… poses by the parallel prefix product on SE(2)")
+    ribbon(ax, Ms + 0.18, q_cpu, "tab:gray", "CPU time of all threads / single-thread CPU time "
+           "(work added by threading)")
     ax.plot(Ms, Ms, color="0.5", lw=0.8, ls="--", label="no parallelism (overhead = M)")
     ax.axhline(1.0, color="0.3", lw=0.8)
     if cores and Ms.max() > cores:
@@ -190,7 +200,7 @@ def main():
     tb, side_b = table(args.data, "fig3_13b", ["trajectory", "steps", "threads", "unsupported",
                                                "scan_max_diff", "same_as_one_thread",
                                                "time_increments_ns", "time_sequential_ns",
-                                               "time_scan_ns"])
+                                               "time_scan_ns", "time_cpu_increments_ns"])
     if np.all(ta["time_ours_ns"] == 0) or np.all(tb["time_increments_ns"] == 0):
         c.fail(f"{args.data / STUDY}: timings are all 0 (a --no-timing run): nothing to plot")
     values: dict = {}

@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -62,6 +63,14 @@ std::mutex& timing_mutex() {
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// CPU time of the whole process (all threads), s. The parallel sections' CPU time tells the
+/// work the threads did, which wall time on a shared machine cannot.
+double process_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 /// ns per call of f: k calls in a row, k so that the batch lasts ≥ min_batch_s (from one
@@ -324,12 +333,15 @@ const std::vector<std::string> kParallelColumns = {"id",
                                                    "same_as_one_thread",
                                                    "time_increments_ns",
                                                    "time_sequential_ns",
-                                                   "time_scan_ns"};
+                                                   "time_scan_ns",
+                                                   "time_cpu_increments_ns",
+                                                   "time_cpu_scan_ns"};
 
 // One row per (trajectory, M threads). time_increments_ns: the steps' increments exp(v dt) on M
 // threads (support, connection and viscous-Coulomb balance per step); time_sequential_ns: their
 // sequential product (one thread, as in the thesis); time_scan_ns: the blocked parallel prefix
-// product on M threads. end_*: the last pose of the sequential product; scan_max_diff: the
+// product on M threads; time_cpu_*: the process's CPU time (all threads) in those two sections.
+// end_*: the last pose of the sequential product; scan_max_diff: the
 // largest |Δx| + |Δy| + |Δθ| between the two products over all poses; same_as_one_thread: 1 if
 // both products' last poses equal the one-thread run's to the bit.
 PointResult run_parallel(const Point& point) {
@@ -359,16 +371,20 @@ PointResult run_parallel(const Point& point) {
       const int m = 1 + static_cast<int>((t + j) % in.max_threads);
       const auto um = static_cast<std::size_t>(m - 1);
       core::WorkerPool& pool = *pools[um];
+      double c0 = process_cpu_seconds();
       auto t0 = Clock::now();
       connection::step_increments(robot, batch, connection::FrictionLaw::kViscousCoulomb, pool,
                                   in.blocks, data);
       const double t_inc = seconds_since(t0);
+      const double c_inc = process_cpu_seconds() - c0;
       t0 = Clock::now();
       core::sequential_product({}, data.increments, seq);
       const double t_seq = seconds_since(t0);
+      c0 = process_cpu_seconds();
       t0 = Clock::now();
       core::prefix_product({}, data.increments, scan, pool, in.blocks);
       const double t_scan = seconds_since(t0);
+      const double c_scan = process_cpu_seconds() - c0;
       double diff = 0.0;
       for (std::size_t k = 0; k < seq.size(); ++k) {
         diff = std::max(diff, std::abs(seq[k].x - scan[k].x) + std::abs(seq[k].y - scan[k].y) +
@@ -391,7 +407,9 @@ PointResult run_parallel(const Point& point) {
                      0LL,
                      1e9 * t_inc,
                      1e9 * t_seq,
-                     1e9 * t_scan};
+                     1e9 * t_scan,
+                     1e9 * c_inc,
+                     1e9 * c_scan};
     }
     const auto same = [](const core::Pose2& a, const core::Pose2& b) {
       return a.x == b.x && a.y == b.y && a.theta == b.theta;

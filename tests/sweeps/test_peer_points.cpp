@@ -76,7 +76,8 @@ TEST(PeerPoints, ParallelOverheadRowsAreConsistent) {
     EXPECT_EQ(std::get<long long>(row[col(f, "same_as_one_thread")]), 1);
     EXPECT_LE(std::get<double>(row[col(f, "scan_max_diff")]), 1e-12);
     EXPECT_EQ(std::get<long long>(row[col(f, "unsupported")]), 0);
-    for (const char* t : {"time_increments_ns", "time_sequential_ns", "time_scan_ns"}) {
+    for (const char* t :
+         {"time_increments_ns", "time_sequential_ns", "time_scan_ns", "time_cpu_increments_ns"}) {
       EXPECT_GT(std::get<double>(row[col(f, t)]), 0.0) << t;
     }
     // Every thread count reports the same end pose of a trajectory (bitwise, also in the CSV).
