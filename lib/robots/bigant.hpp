@@ -38,6 +38,7 @@ inline constexpr int kBigAntLegs = 6;
 inline constexpr double kBigAntMass = 8.18;           ///< kg (§4.1.1)
 inline constexpr double kGravity = 9.81;              ///< m/s²
 inline constexpr double kBigAntStanceSweep = 0.35;    ///< turns of φ on the flat bottom
+inline constexpr double kBigAntMaxSweep = 0.6;        ///< the most a gait may sweep in stance
 inline constexpr double kBigAntStaticSinkage = 0.01;  ///< m, mean spring compression standing
                                                       ///< on one tripod (sets K, below)
 inline constexpr double kBigAntLegSpacing = 0.30;     ///< m, fore-aft between stance centres

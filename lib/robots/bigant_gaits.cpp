@@ -45,7 +45,7 @@ Walker bigant_walker(std::string name, const Shapes& shapes, const Offsets& offs
 
 void check_sweep(const std::string& where, double sweep) {
   detail::require_positive(where, sweep);
-  detail::require_range(where, sweep, 0.0, kBigAntStanceSweep);
+  detail::require_range(where, sweep, 0.0, kBigAntMaxSweep);
 }
 
 }  // namespace

@@ -168,12 +168,13 @@ TEST(Options, BadValuesThrowInputErrorNamingTheOption) {
   EXPECT_EQ(error_at(tripod({0.1, 0.0, 0.45, 0.35})), "bigant_tripod.duty");
   EXPECT_EQ(error_at(tripod({0.1, 0.0, 1.0, 0.35})), "bigant_tripod.duty");
   EXPECT_EQ(error_at(tripod({0.1, 0.0, 0.55, 0.0})), "bigant_tripod.sweep");
-  EXPECT_EQ(error_at(tripod({0.1, 0.0, 0.55, 0.5})), "bigant_tripod.sweep");
+  EXPECT_EQ(error_at(tripod({0.1, 0.0, 0.55, 0.65})), "bigant_tripod.sweep");
 
   auto meta = [](MetachronalGait g) { return [g] { (void)bigant_metachronal(g); }; };
   EXPECT_EQ(error_at(meta({})), "(no error)");
   EXPECT_EQ(error_at(meta({0.0, 0.35})), "bigant_metachronal.frequency");
-  EXPECT_EQ(error_at(meta({0.1, 0.4})), "bigant_metachronal.sweep");
+  EXPECT_EQ(error_at(meta({0.1, 0.7})), "bigant_metachronal.sweep");
+  EXPECT_EQ(error_at(meta({0.1, 0.0})), "bigant_metachronal.sweep");
 
   auto pod = [](UndulationGait g) { return [g] { (void)multipod(g); }; };
   EXPECT_EQ(error_at(pod({})), "(no error)");
