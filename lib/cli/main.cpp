@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   slipwalk::cli::add_sweep_command(app);
   slipwalk::cli::add_reproduce_command(app);
   slipwalk::cli::add_model_command(app);
+  slipwalk::cli::add_run_command(app);
   try {
     app.parse(argc, argv);
     return 0;

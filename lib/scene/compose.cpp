@@ -1,8 +1,7 @@
 // compose(): a scene to a simulator, assembled once. The walker comes from the robot factories;
 // the trajectory kernel is one of the template instantiations of connection::integrate, picked
 // here by the effects the scene names, so the per-step code has no branch for an effect that is
-// off (DESIGN.md: Only the effects a scene calls for). Kept apart from scene.cpp so that reading
-// scenes does not link the robots.
+// off (DESIGN.md: Only the effects a scene calls for).
 #include <utility>
 
 #include "core/error.hpp"
@@ -11,25 +10,6 @@
 namespace slipwalk::scene {
 
 namespace {
-
-robots::Walker make_walker(const Gait& gait) {
-  return std::visit(
-      [](const auto& g) -> robots::Walker {
-        using G = std::decay_t<decltype(g)>;
-        if constexpr (std::is_same_v<G, robots::TripodGait>) {
-          return robots::bigant_tripod(g);
-        } else if constexpr (std::is_same_v<G, robots::MetachronalGait>) {
-          return robots::bigant_metachronal(g);
-        } else if constexpr (std::is_same_v<G, robots::UndulationGait>) {
-          return robots::multipod(g);
-        } else if constexpr (std::is_same_v<G, robots::TrotGait>) {
-          return robots::quadruped_trot(g);
-        } else {
-          return robots::disk_robot(g);
-        }
-      },
-      gait);
-}
 
 /// The kernel for a law and a filter, both fixed from here on.
 template <class Law, class Filter>
@@ -49,6 +29,25 @@ Simulator::Kernel with_filter(const Law& law, const std::optional<FilterEffect>&
 }
 
 }  // namespace
+
+robots::Walker make_walker(const Gait& gait) {
+  return std::visit(
+      [](const auto& g) -> robots::Walker {
+        using G = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<G, robots::TripodGait>) {
+          return robots::bigant_tripod(g);
+        } else if constexpr (std::is_same_v<G, robots::MetachronalGait>) {
+          return robots::bigant_metachronal(g);
+        } else if constexpr (std::is_same_v<G, robots::UndulationGait>) {
+          return robots::multipod(g);
+        } else if constexpr (std::is_same_v<G, robots::TrotGait>) {
+          return robots::quadruped_trot(g);
+        } else {
+          return robots::disk_robot(g);
+        }
+      },
+      gait);
+}
 
 connection::TrajectorySummary Simulator::run(const connection::TrajectorySink& sink) const {
   connection::TrajectoryData data(walker.robot);

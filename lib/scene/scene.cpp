@@ -21,8 +21,10 @@ using core::InputError;
 /// Every table a scene may hold and the keys each may hold (toml_reader.hpp uses it to suggest).
 const std::vector<TableSchema>& schema() {
   static const std::vector<TableSchema> tables = {
-      {"robot", {"name", "legs", "radius"}},
-      {"gait", {"kind", "frequency", "steer", "dphi", "roll_amplitude", "yaw_amplitude"}},
+      {"robot", {"name", "legs", "radius", "stiffness"}},
+      {"gait",
+       {"kind", "frequency", "steer", "duty", "sweep", "dphi", "roll_amplitude", "yaw_amplitude",
+        "stride", "swing_height"}},
       {"run", {"duration", "dt", "steps"}},
       {"friction", {"law", "tol", "max_iterations"}},
       {"filter", {"gamma"}},
@@ -109,82 +111,130 @@ std::vector<std::string_view> gaits_of(std::string_view robot) {
   return {"disk"};
 }
 
-/// Reads the gait's frequency (every gait has one) into `value` if given: > 0.
+/// The [gait] keys that belong to some gaits only (kind and frequency belong to all).
+struct GaitKey {
+  std::string_view key;
+  std::vector<std::string_view> kinds;  ///< the gaits that have it
+  std::string_view owner;               ///< for messages: "the tripod and trot gaits"
+};
+
+const std::vector<GaitKey>& gait_keys() {
+  static const std::vector<GaitKey> keys = {
+      {"steer", {"tripod"}, "the tripod gait"},
+      {"duty", {"tripod", "trot"}, "the tripod and trot gaits"},
+      {"sweep", {"tripod", "metachronal"}, "the tripod and metachronal gaits"},
+      {"dphi", {"undulation"}, "the undulation gait"},
+      {"roll_amplitude", {"undulation"}, "the undulation gait"},
+      {"yaw_amplitude", {"undulation"}, "the undulation gait"},
+      {"stride", {"trot"}, "the trot gait"},
+      {"swing_height", {"trot"}, "the trot gait"},
+  };
+  return keys;
+}
+
+/// Reads `key` into `value` if the table has it (a finite number); ranges are checked here for the
+/// options every gait shares and by the robot factories for the rest (check_with_factory).
+void read_number(const TableReader& table, std::string_view key, double& value) {
+  if (const toml::node* n = table.find(key)) {
+    value = table.number(*n, key);
+  }
+}
+
 void read_frequency(const TableReader& gait, double& value) {
+  read_number(gait, "frequency", value);
   if (const toml::node* n = gait.find("frequency")) {
-    value = gait.number(*n, "frequency");
     gait.check(value > 0.0, *n, "frequency", "must be > 0 Hz, got " + core::format_double(value));
   }
 }
 
-void read_angle(const TableReader& gait, std::string_view key, double& value) {
-  if (const toml::node* n = gait.find(key)) {
-    value = gait.number(*n, key);
+int read_legs(const TableReader& robot, int value, long long lo, long long hi, bool even) {
+  if (const toml::node* n = robot.find("legs")) {
+    const long long legs = robot.integer(*n, "legs");
+    const bool ok = legs >= lo && legs <= hi && (!even || legs % 2 == 0);
+    robot.check(ok, *n, "legs",
+                (even ? "the multipod has 6, 8, 10 or 12 legs, got "
+                      : "the disk robot has 3 to 1000 legs, got ") +
+                    std::to_string(legs));
+    return static_cast<int>(legs);
   }
+  return value;
 }
 
 Gait read_gait(const TableReader& robot, const TableReader& gait, const std::string& robot_name) {
   const std::string kind = gait.choice(gait.required("kind"), "kind", gaits_of(robot_name));
   std::string chosen = "kind = '";
   chosen.append(kind).append("'");
-  if (kind != "tripod") {
-    gait.forbid("steer", "the tripod gait", chosen);
-  }
-  if (kind != "undulation") {
-    for (std::string_view key : {"dphi", "roll_amplitude", "yaw_amplitude"}) {
-      gait.forbid(key, "the undulation gait", chosen);
+  for (const GaitKey& k : gait_keys()) {
+    if (std::find(k.kinds.begin(), k.kinds.end(), kind) == k.kinds.end()) {
+      gait.forbid(k.key, k.owner, chosen);
     }
   }
-  // The robot's own parameters (legs, radius) live in [robot]; the gait structs carry them.
-  const toml::node* legs = robot.find("legs");
   if (kind == "tripod") {
     robots::TripodGait g;
     read_frequency(gait, g.frequency);
+    read_number(gait, "steer", g.steer);
     if (const toml::node* n = gait.find("steer")) {
-      g.steer = gait.number(*n, "steer");
       gait.check(std::abs(g.steer) <= 1.0, *n, "steer",
                  "must be in [-1, 1], got " + core::format_double(g.steer));
     }
+    read_number(gait, "duty", g.duty);
+    read_number(gait, "sweep", g.sweep);
     return g;
   }
   if (kind == "metachronal") {
     robots::MetachronalGait g;
     read_frequency(gait, g.frequency);
+    read_number(gait, "sweep", g.sweep);
     return g;
   }
   if (kind == "undulation") {
     robots::UndulationGait g;
     read_frequency(gait, g.frequency);
-    read_angle(gait, "dphi", g.dphi);
-    read_angle(gait, "roll_amplitude", g.roll_amplitude);
-    read_angle(gait, "yaw_amplitude", g.yaw_amplitude);
-    if (legs != nullptr) {
-      const long long n = robot.integer(*legs, "legs");
-      robot.check(n == 6 || n == 8 || n == 10 || n == 12, *legs, "legs",
-                  "the multipod has 6, 8, 10 or 12 legs, got " + std::to_string(n));
-      g.legs = static_cast<int>(n);
-    }
+    read_number(gait, "dphi", g.dphi);
+    read_number(gait, "roll_amplitude", g.roll_amplitude);
+    read_number(gait, "yaw_amplitude", g.yaw_amplitude);
+    g.legs = read_legs(robot, g.legs, 6, 12, true);
+    read_number(robot, "stiffness", g.stiffness);
     return g;
   }
   if (kind == "trot") {
     robots::TrotGait g;
     read_frequency(gait, g.frequency);
+    read_number(gait, "duty", g.duty);
+    read_number(gait, "stride", g.stride);
+    read_number(gait, "swing_height", g.swing_height);
     return g;
   }
   robots::DiskGait g;
   read_frequency(gait, g.frequency);
-  if (legs != nullptr) {
-    const long long n = robot.integer(*legs, "legs");
-    robot.check(n >= 3 && n <= 1000, *legs, "legs",
-                "the disk robot has 3 to 1000 legs, got " + std::to_string(n));
-    g.legs = static_cast<int>(n);
-  }
+  g.legs = read_legs(robot, g.legs, 3, 1000, false);
+  read_number(robot, "radius", g.radius);
   if (const toml::node* r = robot.find("radius")) {
-    g.radius = robot.number(*r, "radius");
     robot.check(g.radius > 0.0, *r, "radius",
                 "must be > 0 m, got " + core::format_double(g.radius));
   }
   return g;
+}
+
+/// The robot factories check their options (robots/check.hpp); an InputError of theirs names the
+/// option as "<factory>.<option>", which is re-raised at that key in the file.
+void check_with_factory(const Gait& g, const TableReader& robot, const TableReader& gait) {
+  try {
+    (void)make_walker(g);
+  } catch (const InputError& e) {
+    const std::string& where = e.where();
+    const std::string option = where.substr(where.rfind('.') + 1);
+    std::string what = e.what();
+    if (what.rfind(where + ": ", 0) == 0) {
+      what.erase(0, where.size() + 2);
+    }
+    for (const TableReader* table : {&gait, &robot}) {
+      if (const toml::node* n = table->find(option)) {
+        table->check(false, *n, option, what);
+      }
+    }
+    throw InputError(gait.origin(), e.what());
+  }
 }
 
 void read_run(const TableReader& run, Scene& scene) {
@@ -276,11 +326,15 @@ Scene parse_scene(std::string_view text, const std::string& path) {
   if (scene.robot != "disk") {
     robot.forbid("radius", "the disk robot", chosen);
   }
+  if (scene.robot != "multipod") {
+    robot.forbid("stiffness", "the multipod robot", chosen);
+  }
 
   // [gait]: the gait of that robot and its parameters.
   const TableReader gait(required_table(doc, "gait", path), schema_of("gait"), path, all);
   scene.gait_origin = gait.origin();
   scene.gait = read_gait(robot, gait, scene.robot);
+  check_with_factory(scene.gait, robot, gait);
 
   // [run] and the effects.
   read_run(TableReader(required_table(doc, "run", path), schema_of("run"), path, all), scene);
@@ -316,11 +370,20 @@ nlohmann::json to_json(const Scene& scene) {
         gait["frequency"] = g.frequency;
         if constexpr (std::is_same_v<G, robots::TripodGait>) {
           gait["steer"] = g.steer;
+          gait["duty"] = g.duty;
+          gait["sweep"] = g.sweep;
+        } else if constexpr (std::is_same_v<G, robots::MetachronalGait>) {
+          gait["sweep"] = g.sweep;
         } else if constexpr (std::is_same_v<G, robots::UndulationGait>) {
           gait["legs"] = g.legs;
           gait["dphi"] = g.dphi;
           gait["roll_amplitude"] = g.roll_amplitude;
           gait["yaw_amplitude"] = g.yaw_amplitude;
+          gait["stiffness"] = g.stiffness;
+        } else if constexpr (std::is_same_v<G, robots::TrotGait>) {
+          gait["duty"] = g.duty;
+          gait["stride"] = g.stride;
+          gait["swing_height"] = g.swing_height;
         } else if constexpr (std::is_same_v<G, robots::DiskGait>) {
           gait["legs"] = g.legs;
           gait["radius"] = g.radius;

@@ -6,15 +6,18 @@
 //
 //   [robot]                  # required
 //   name = "bigant"          # "bigant" | "multipod" | "quadruped" | "disk"
-//   # legs = 6               # multipod: 6, 8, 10, 12; disk: ≥ 3
+//   # legs = 6               # multipod: 6, 8, 10, 12; disk: 3 … 1000
 //   # radius = 0.3           # disk only, m
+//   # stiffness = 1000.0     # multipod only, N/m (robots/multipod.hpp)
 //
 //   [gait]                   # required
 //   kind = "tripod"          # bigant: "tripod" | "metachronal"; multipod: "undulation";
 //                            # quadruped: "trot"; disk: "disk"
 //   frequency = 0.1          # Hz, > 0 (default: the gait's, robots/robots.hpp)
 //   steer = 0.0              # tripod only, [−1, 1]
-//   # dphi, roll_amplitude, yaw_amplitude  (undulation only, rad)
+//   # duty (tripod, trot), sweep (tripod, metachronal), dphi, roll_amplitude, yaw_amplitude
+//   # (undulation, rad), stride, swing_height (trot, m): the fields of robots/robots.hpp's gait
+//   # options, with their defaults and valid ranges (checked by the robot factories)
 //
 //   [run]                    # required
 //   duration = 20.0          # s, > 0
@@ -75,7 +78,8 @@ inline constexpr long long kMaxSteps = 10'000'000;
 
 /// Parses a scene from text; `path` names it in messages. Throws core::InputError naming
 /// path:line:col for every error the file can have (syntax, unknown key, wrong type, range,
-/// missing field, a parameter of an effect that is not chosen).
+/// missing field, a parameter of an effect that is not chosen). The gait's options are also
+/// checked by building the walker once (a factory's error is re-raised at the key it names).
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& path);
 
 /// Reads and parses a scene file; an unreadable file is an InputError naming it.
@@ -101,6 +105,9 @@ struct Simulator {
   /// Runs the trajectory into `sink` (allocates the run's buffers once).
   connection::TrajectorySummary run(const connection::TrajectorySink& sink) const;
 };
+
+/// The built-in walker of a gait (robots/robots.hpp); throws the factory's core::InputError.
+[[nodiscard]] robots::Walker make_walker(const Gait& gait);
 
 /// Builds the walker (robots/robots.hpp) and picks the kernel. A robot factory's InputError is
 /// re-raised naming the scene's [gait] table.

@@ -1,10 +1,12 @@
-// scene::parse_scene: every field of the format, and every error class naming file:line:col
-// (unknown key with a suggestion, wrong type, out of range, missing field, a parameter of an effect
-// that is not chosen, TOML syntax); random mutations of a good scene parse or raise InputError.
+// scene::parse_scene: every field of the format, and every error class naming
+// file:line:col (unknown key with a suggestion, wrong type, out of range,
+// missing field, a parameter of an effect that is not chosen, TOML syntax);
+// random mutations of a good scene parse or raise InputError.
 #include <gtest/gtest.h>
 
 #include <random>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "scene/scene.hpp"
@@ -33,7 +35,8 @@ tol = 1e-9
 gamma = 0.3
 )";
 
-/// Parses `text` expecting an InputError at `line:col` whose message contains `part`.
+/// Parses `text` expecting an InputError at `line:col` whose message contains
+/// `part`.
 void expect_error(const std::string& text, const std::string& at, const std::string& part) {
   try {
     (void)parse_scene(text, "scene.toml");
@@ -113,7 +116,8 @@ law = "viscous"
   EXPECT_EQ(u.dphi, 1.5);
   EXPECT_EQ(u.roll_amplitude, robots::UndulationGait{}.roll_amplitude);
   ASSERT_TRUE(m.filter.has_value());
-  EXPECT_EQ(m.filter->gamma, 0.15);  // the thesis' value when [filter] gives none
+  EXPECT_EQ(m.filter->gamma,
+            0.15);  // the thesis' value when [filter] gives none
 
   const Scene d = parse_scene(R"([robot]
 name = "disk"
@@ -204,6 +208,29 @@ law = "viscous"
                "3:8", "robot.legs: the multipod has 6, 8, 10 or 12 legs, got 7");
 }
 
+TEST(Scene, RangesTheRobotFactoriesCheckNameTheKey) {
+  // duty, sweep, amplitudes, stride … are checked by the factories; their errors point at the key.
+  expect_error(replace(kGood, "steer = -0.5", "steer = -0.5\nduty = 1.5"), "8:8", "gait.duty: ");
+  expect_error(replace(kGood, "steer = -0.5", "sweep = 0.9"), "7:9", "gait.sweep: ");
+  const std::string multipod = R"([robot]
+name = "multipod"
+stiffness = 1000.0
+[gait]
+kind = "undulation"
+roll_amplitude = 0.3
+[run]
+duration = 1
+dt = 0.1
+[friction]
+law = "viscous"
+)";
+  (void)parse_scene(multipod, "scene.toml");
+  expect_error(replace(multipod, "roll_amplitude = 0.3", "roll_amplitude = 2.0"), "6:18",
+               "gait.roll_amplitude: ");
+  expect_error(replace(multipod, "stiffness = 1000.0", "stiffness = -1.0"), "3:13",
+               "robot.stiffness: ");
+}
+
 TEST(Scene, MissingRequiredFields) {
   expect_error(replace(kGood, "name = \"bigant\"\n", ""), "1:1",
                "missing required key 'name' in [robot]");
@@ -218,14 +245,22 @@ TEST(Scene, MissingRequiredFields) {
 
 TEST(Scene, ParametersOfEffectsThatAreNotChosen) {
   expect_error(replace(kGood, "law = \"coulomb\"", "law = \"viscous\""), "15:7",
-               "friction.tol: a parameter of the coulomb law, given with law = 'viscous'");
+               "friction.tol: a parameter of the coulomb law, given with law = "
+               "'viscous'");
   expect_error(replace(kGood, "kind = \"tripod\"", "kind = \"metachronal\""), "7:9",
-               "gait.steer: a parameter of the tripod gait, given with kind = 'metachronal'");
+               "gait.steer: a parameter of the tripod gait, given with kind = "
+               "'metachronal'");
   expect_error(replace(kGood, "name = \"bigant\"", "name = \"bigant\"\nlegs = 6"), "3:8",
-               "robot.legs: a parameter of the multipod and disk robots, given with name = "
+               "robot.legs: a parameter of the multipod and disk robots, given with "
+               "name = "
                "'bigant'");
   expect_error(replace(kGood, "steer = -0.5", "steer = -0.5\ndphi = 1"), "8:8",
-               "gait.dphi: a parameter of the undulation gait, given with kind = 'tripod'");
+               "gait.dphi: a parameter of the undulation gait, given with kind "
+               "= 'tripod'");
+  expect_error(replace(kGood, "steer = -0.5", "stride = 0.1"), "7:10",
+               "gait.stride: a parameter of the trot gait, given with kind = 'tripod'");
+  expect_error(replace(kGood, "name = \"bigant\"", "name = \"bigant\"\nstiffness = 5"), "3:13",
+               "robot.stiffness: a parameter of the multipod robot");
   expect_error(replace(kGood, "kind = \"tripod\"", "kind = \"trot\""), "5:8",
                "gait.kind: unknown value 'trot' (valid: tripod, metachronal)");
   expect_error(replace(kGood, "dt = 0.01", "dt = 0.01\nsteps = 1000"), "12:9",
@@ -235,7 +270,8 @@ TEST(Scene, ParametersOfEffectsThatAreNotChosen) {
 TEST(Scene, TomlSyntaxErrorsNameTheirPlace) {
   expect_error(replace(kGood, "frequency = 0.2", "frequency = = 0.2"), "6:13", "");
   expect_error(replace(kGood, "[run]", "[run"), "9:5", "");
-  expect_error(replace(kGood, "[filter]", "[gait]"), "17:1", "");  // a table defined twice
+  expect_error(replace(kGood, "[filter]", "[gait]"), "17:1",
+               "");  // a table defined twice
 }
 
 TEST(Scene, UnreadableFileIsAnInputError) {
@@ -286,6 +322,79 @@ TEST(Scene, MutatedScenesParseOrRaiseInputError) {
     }
   }
   EXPECT_GT(errors, 100);
+}
+
+// ---- compose: the scene to a simulator (needs the robot factories)
+// -----------------------------
+
+Scene short_scene(const std::string& robot, const std::string& gait, const std::string& law,
+                  bool filter) {
+  std::string text = "[robot]\nname = \"";
+  text.append(robot).append("\"\n[gait]\nkind = \"").append(gait);
+  text.append("\"\n[run]\nduration = 0.5\ndt = 0.05\n[friction]\nlaw = \"").append(law);
+  text.append("\"\n");
+  if (filter) {
+    text.append("[filter]\ngamma = 0.2\n");
+  }
+  return parse_scene(text, "c.toml");
+}
+
+TEST(SceneCompose, PicksTheKernelOnceAndRunsEveryFrame) {
+  for (bool filter : {false, true}) {
+    for (const char* law : {"viscous", "coulomb"}) {
+      const Scene scene = short_scene("bigant", "tripod", law, filter);
+      const Simulator sim = compose(scene);
+      EXPECT_EQ(sim.kernel_name, std::string(law) + (filter ? "+filter" : ""));
+      EXPECT_EQ(sim.walker.legs(), 6);
+      EXPECT_EQ(sim.options.steps, 10);
+      EXPECT_EQ(sim.options.dt, 0.05);
+      // The composed kernel is connection::integrate with that law and filter,
+      // bit for bit.
+      std::vector<Eigen::Vector3d> composed;
+      std::vector<Eigen::Vector3d> direct;
+      const auto summary = sim.run([&](const connection::TrajectoryStep& s) {
+        composed.push_back(Eigen::Vector3d(s.pose.x, s.pose.y, s.pose.theta));
+      });
+      EXPECT_EQ(summary.frames, 11);
+      connection::TrajectoryData data(sim.walker.robot);
+      const connection::TrajectorySink sink = [&](const connection::TrajectoryStep& s) {
+        direct.push_back(Eigen::Vector3d(s.pose.x, s.pose.y, s.pose.theta));
+      };
+      const bool coulomb = std::string(law) == "coulomb";
+      if (coulomb && filter) {
+        connection::integrate(sim.walker.robot, sim.walker.feet, sim.options,
+                              connection::CoulombKernel{}, connection::IirFilter{0.2}, data, sink);
+      } else if (coulomb) {
+        connection::integrate(sim.walker.robot, sim.walker.feet, sim.options,
+                              connection::CoulombKernel{}, connection::NoFilter{}, data, sink);
+      } else if (filter) {
+        connection::integrate(sim.walker.robot, sim.walker.feet, sim.options,
+                              connection::ViscousCoulombKernel{}, connection::IirFilter{0.2}, data,
+                              sink);
+      } else {
+        connection::integrate(sim.walker.robot, sim.walker.feet, sim.options,
+                              connection::ViscousCoulombKernel{}, connection::NoFilter{}, data,
+                              sink);
+      }
+      EXPECT_EQ(composed, direct);
+    }
+  }
+}
+
+TEST(SceneCompose, EveryRobot) {
+  struct Case {
+    const char* robot;
+    const char* gait;
+    int legs;
+  };
+  for (const Case& c : {Case{"bigant", "metachronal", 6}, Case{"multipod", "undulation", 6},
+                        Case{"quadruped", "trot", 4}, Case{"disk", "disk", 6}}) {
+    const Simulator sim = compose(short_scene(c.robot, c.gait, "viscous", false));
+    EXPECT_EQ(sim.walker.legs(), c.legs) << c.robot;
+    EXPECT_EQ(static_cast<int>(sim.walker.leg_names.size()), c.legs) << c.robot;
+    const auto summary = sim.run([](const connection::TrajectoryStep&) {});
+    EXPECT_EQ(summary.frames, 11) << c.robot;
+  }
 }
 
 }  // namespace
