@@ -15,8 +15,7 @@ namespace slipwalk::robots {
 
 /// Writes the feet's positions q (3 × N, m) and velocities q̇ = dq/dt (3 × N, m/s) in the body
 /// frame at time t (s). Sizes are the robot's; implementations must not allocate.
-using FootKinematics =
-    std::function<void(double t, Eigen::Matrix3Xd& q, Eigen::Matrix3Xd& qdot)>;
+using FootKinematics = std::function<void(double t, Eigen::Matrix3Xd& q, Eigen::Matrix3Xd& qdot)>;
 
 /// Writes each leg's gait phase at time t: the shaft angle φ ∈ [0, 1) for BigANT's crank legs,
 /// the oscillator phase (2πft + iΔφ)/2π mod 1 for the Multipod and the quadruped. Optional.
