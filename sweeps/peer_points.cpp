@@ -15,7 +15,7 @@
 // state before every step (rewinding, a copy of qpos, qvel, ctrl and the warm start, is inside
 // the timed loop; its own cost is reported as time_rewind_ns). Ours and MuJoCo's are timed
 // alternately per configuration, so background load hits both alike. All inputs are built before
-// the clock starts; timed sections of concurrent points take turns (a mutex).
+// the clock starts; points of these kinds run one at a time (a mutex), whatever --jobs says.
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
@@ -204,6 +204,9 @@ const std::vector<std::string> kScalingColumns = {"id",
 // the mujoco_* columns are −1, the MuJoCo times NaN, peer "none" and the message says why.
 PointResult run_scaling(const Point& point) {
   const ScalingInputs in = read_scaling(point);
+  // The whole point, not only its timed loops: building another point's configurations on the
+  // second core would slow the timed loops down through the shared cache and memory bus.
+  const std::lock_guard<std::mutex> lock(timing_mutex());
   const contact::Robot robot = uniform(in.n);
   const peer::PeerSpec spec = peer::disk_spec(robot, kRadius, kReach, kHeight);
   std::vector<contact::Frame> configs;
@@ -227,7 +230,6 @@ PointResult run_scaling(const Point& point) {
   std::call_once(warned,
                  [&] { std::cerr << "slipwalk: warning: peer_scaling: " << message << '\n'; });
 #endif
-  const std::lock_guard<std::mutex> lock(timing_mutex());
   for (long long i = 0; i < in.configs; ++i) {
     contact::Frame& f = configs[static_cast<std::size_t>(i)];
     long long down = 0;
@@ -346,6 +348,7 @@ const std::vector<std::string> kParallelColumns = {"id",
 // both products' last poses equal the one-thread run's to the bit.
 PointResult run_parallel(const Point& point) {
   const ParallelInputs in = read_parallel(point);
+  const std::lock_guard<std::mutex> lock(timing_mutex());  // as in run_scaling
   const contact::Robot robot = uniform(6);
   connection::StepBatch batch;
   batch.q.resize(3, 6 * in.steps);
@@ -365,7 +368,6 @@ PointResult run_parallel(const Point& point) {
   std::vector<core::Pose2> end_seq(threads), end_scan(threads);
   for (long long t = 0; t < in.trajectories; ++t) {
     draw_trajectory(robot, in, t, f, batch);
-    const std::lock_guard<std::mutex> lock(timing_mutex());
     // Thread counts in rotated order per trajectory, so no M always runs first (cold caches).
     for (int j = 0; j < in.max_threads; ++j) {
       const int m = 1 + static_cast<int>((t + j) % in.max_threads);
