@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
+#include "scene/run_writer.hpp"
 #include "sweeps/runner.hpp"
 #include "sweeps/toml_util.hpp"
 
@@ -37,6 +39,33 @@ std::string text(const toml::node& node, const std::string& key, const std::stri
     throw InputError(origin_of(node.source(), path), key + ": expected a string");
   }
   return s->get();
+}
+
+void check_plain_name(const std::string& name, const std::string& where) {
+  const bool plain =
+      !name.empty() && name.front() != '.' && std::all_of(name.begin(), name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      });
+  if (!plain) {
+    throw InputError(where, "name: '" + name + "' is not a plain file name");
+  }
+}
+
+/// steps = duration / dt, which must be a whole number (the frames end at the duration).
+long long whole_steps(double duration, double dt, const std::string& where,
+                      const std::string& key) {
+  const double ratio = duration / dt;
+  const double n = std::round(ratio);
+  if (!(n >= 1.0 && n <= static_cast<double>(scene::kMaxSteps)) ||
+      std::abs(ratio - n) > 1e-9 * ratio) {
+    std::string what = key;
+    what.append(": duration / dt = ")
+        .append(core::format_double(ratio))
+        .append(" must be a whole number of steps from 1 to ")
+        .append(std::to_string(scene::kMaxSteps));
+    throw InputError(where, what);
+  }
+  return static_cast<long long>(n);
 }
 
 TraceJob parse_trace(const toml::table& t, const std::string& path) {
@@ -118,13 +147,7 @@ TraceJob parse_trace(const toml::table& t, const std::string& path) {
   if (job.name.empty() || !has_force || !has_mu) {
     throw InputError(job.origin, "a [[trace]] needs name, F and mu");
   }
-  const bool plain =
-      job.name.front() != '.' && std::all_of(job.name.begin(), job.name.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-      });
-  if (!plain) {
-    throw InputError(where["name"], "name: '" + job.name + "' is not a plain file name");
-  }
+  check_plain_name(job.name, where["name"]);
   if (has_alpha && job.params.model != inchworm::SwapModel::kMass) {
     throw InputError(where["alpha"],
                      "alpha: only used with model = \"dm\" (the instant swap has no swap force)");
@@ -137,6 +160,95 @@ TraceJob parse_trace(const toml::table& t, const std::string& path) {
     const std::string what = e.what();
     throw InputError(where.count(key) ? where[key] : job.origin,
                      key + ": " + what.substr(std::min(what.size(), e.where().size() + 2)));
+  }
+  return job;
+}
+
+SceneJob parse_scene_entry(const toml::table& t, const std::filesystem::path& dir,
+                           const std::string& path) {
+  SceneJob job;
+  job.origin = origin_of(t.source(), path);
+  job.source = nlohmann::json::object();
+  std::map<std::string, std::string> where;  // key -> file:line:col
+  std::map<std::string, const toml::node*> nodes;
+  for (auto&& [k, v] : t) {
+    const std::string key(k.str());
+    static const std::array<const char*, 8> kKeys = {"name",  "file",     "law", "filter",
+                                                     "gamma", "duration", "dt",  "quick_duration"};
+    if (std::find_if(kKeys.begin(), kKeys.end(), [&](const char* c) { return key == c; }) ==
+        kKeys.end()) {
+      throw InputError(origin_of(k.source(), path),
+                       "unknown key '" + key +
+                           "' in [[scene]]; expected name, file, law, filter, gamma, duration, "
+                           "dt, quick_duration");
+    }
+    where[key] = origin_of(v.source(), path);
+    nodes[key] = &v;
+    job.source[key] = toml_to_json(v);
+  }
+  if (!nodes.count("name") || !nodes.count("file")) {
+    throw InputError(job.origin, "a [[scene]] needs name and file");
+  }
+  job.name = text(*nodes["name"], "name", path);
+  check_plain_name(job.name, where["name"]);
+  const std::filesystem::path file = dir / text(*nodes["file"], "file", path);
+  if (!std::filesystem::is_regular_file(file)) {
+    throw InputError(where["file"], "file: no scene file " + file.string());
+  }
+  job.scene = scene::read_scene(file);  // errors name the scene file's line and column
+
+  // Overrides: one scene file serves both friction laws, filter on and off, shorter runs.
+  scene::Scene& sc = job.scene;
+  if (nodes.count("law")) {
+    const std::string law = text(*nodes["law"], "law", path);
+    if (law == "viscous") {
+      sc.friction.law = connection::FrictionLaw::kViscousCoulomb;
+    } else if (law == "coulomb") {
+      sc.friction.law = connection::FrictionLaw::kCoulomb;
+    } else {
+      throw InputError(where["law"],
+                       "law: unknown law '" + law + "'; expected \"viscous\" or \"coulomb\"");
+    }
+  }
+  if (nodes.count("filter")) {
+    const auto* on = nodes["filter"]->as_boolean();
+    if (on == nullptr) {
+      throw InputError(where["filter"], "filter: expected true or false");
+    }
+    if (!on->get()) {
+      if (nodes.count("gamma")) {
+        throw InputError(where["gamma"], "gamma: only used with the filter on");
+      }
+      sc.filter.reset();
+    } else if (!sc.filter) {
+      sc.filter = scene::FilterEffect{};
+    }
+  }
+  if (nodes.count("gamma")) {
+    const double gamma = number(*nodes["gamma"], "gamma", path);
+    if (!(gamma >= 0.0 && gamma < 1.0)) {
+      throw InputError(where["gamma"], "gamma: must be in [0, 1)");
+    }
+    sc.filter = scene::FilterEffect{gamma};
+  }
+  for (const char* key : {"duration", "dt", "quick_duration"}) {
+    if (nodes.count(key) && !(number(*nodes[key], key, path) > 0.0)) {
+      throw InputError(where[key], std::string(key).append(": must be > 0 s"));
+    }
+  }
+  if (nodes.count("duration")) {
+    sc.duration = number(*nodes["duration"], "duration", path);
+  }
+  if (nodes.count("dt")) {
+    sc.dt = number(*nodes["dt"], "dt", path);
+  }
+  if (nodes.count("duration") || nodes.count("dt")) {
+    const std::string key = nodes.count("duration") ? "duration" : "dt";
+    sc.steps = whole_steps(sc.duration, sc.dt, where[key], key);
+  }
+  if (nodes.count("quick_duration")) {
+    job.quick_duration = number(*nodes["quick_duration"], "quick_duration", path);
+    (void)whole_steps(*job.quick_duration, sc.dt, where["quick_duration"], "quick_duration");
   }
   return job;
 }
@@ -187,9 +299,17 @@ Study load_study(const std::filesystem::path& dir) {
       for (const auto& t : *a) {
         study.traces.push_back(parse_trace(*t.as_table(), path));
       }
+    } else if (k == "scene") {
+      const auto* a = v.as_array();
+      if (a == nullptr || !a->is_array_of_tables()) {
+        throw InputError(origin_of(v.source(), path), "scene: expected [[scene]] tables");
+      }
+      for (const auto& t : *a) {
+        study.scenes.push_back(parse_scene_entry(*t.as_table(), dir, path));
+      }
     } else {
-      throw InputError(origin_of(k.source(), path),
-                       "unknown key '" + std::string(k.str()) + "'; expected title, sweeps, trace");
+      throw InputError(origin_of(k.source(), path), "unknown key '" + std::string(k.str()) +
+                                                        "'; expected title, sweeps, trace, scene");
     }
   }
   return study;
@@ -253,6 +373,34 @@ std::filesystem::path write_trace_job(const Study& study, const TraceJob& job,
   std::filesystem::path json = csv;
   json.replace_extension(".json");
   core::write_file_atomically(json, sidecar.dump(1) + "\n");
+  return csv;
+}
+
+}  // namespace slipwalk::sweeps
+
+namespace slipwalk::sweeps {
+
+std::filesystem::path write_scene_job(const Study& study, const SceneJob& job,
+                                      const std::filesystem::path& data_dir, bool quick) {
+  scene::Scene sc = job.scene;
+  if (quick && job.quick_duration) {
+    sc.duration = *job.quick_duration;
+    sc.steps = whole_steps(sc.duration, sc.dt, job.origin, "quick_duration");
+  }
+  const scene::Simulator sim = scene::compose(sc);
+  const std::filesystem::path csv = data_dir / study.id / (job.name + ".csv");
+  const nlohmann::json extra = {
+      {"study", study.id},   {"name", job.name},
+      {"kind", "scene_run"}, {"spec_file", (study.dir / "study.toml").string()},
+      {"spec", job.source},  {"quick", quick},
+      {"date", utc_now()},
+  };
+  const scene::RunResult result = scene::write_run(sc, sim, csv, extra, nullptr);
+  if (!result.summary.message.empty()) {
+    std::cerr << "slipwalk: warning: " << study.id << "/" << job.name << ": "
+              << result.summary.unsupported << " unsupported and " << result.summary.not_converged
+              << " unconverged frames; first at " << result.summary.message << "\n";
+  }
   return csv;
 }
 

@@ -1,13 +1,16 @@
 #pragma once
 // A study (studies/<id>/study.toml, sweeps/README.md): a title, time-series traces of the
-// inchworm, and sweep specs in the same folder. `slipwalk reproduce` runs them all.
+// inchworm, scene runs (trajectories of walking robots) and sweep specs in the same folder.
+// `slipwalk reproduce` runs them all.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "inchworm/params.hpp"
 #include "inchworm/trace.hpp"
 #include "inchworm/vss.hpp"
+#include "scene/scene.hpp"
 #include "sweeps/spec.hpp"
 
 namespace slipwalk::sweeps {
@@ -21,11 +24,23 @@ struct TraceJob {
   nlohmann::json source;  ///< the table as JSON (sidecar)
 };
 
+/// A [[scene]] entry: a scene file (relative to the study folder) run into <name>.csv, with
+/// optional overrides of its friction law, filter, duration and dt (one scene file serves
+/// several runs: both laws, filter on and off).
+struct SceneJob {
+  std::string name;                      ///< output stem: <data>/<study>/<name>.csv
+  scene::Scene scene;                    ///< the file with the overrides applied
+  std::optional<double> quick_duration;  ///< s, the duration under reproduce --quick
+  std::string origin;                    ///< file:line:col of its [[scene]] table
+  nlohmann::json source;                 ///< the table as JSON (sidecar)
+};
+
 struct Study {
   std::string id;  ///< the folder name, also the data folder of its traces
   std::filesystem::path dir;
   std::string title;
   std::vector<TraceJob> traces;
+  std::vector<SceneJob> scenes;
   std::vector<std::filesystem::path> sweeps;  ///< spec files, in the order listed
 };
 
@@ -41,5 +56,10 @@ struct Study {
 /// atomically. Returns the CSV's path.
 std::filesystem::path write_trace_job(const Study& study, const TraceJob& job,
                                       const std::filesystem::path& data_dir);
+
+/// Runs a [[scene]] entry (quick: its quick_duration, when given) into <data>/<study>/<name>.csv
+/// with the `slipwalk run` columns and sidecar (scene/run_writer.hpp). Returns the CSV's path.
+std::filesystem::path write_scene_job(const Study& study, const SceneJob& job,
+                                      const std::filesystem::path& data_dir, bool quick);
 
 }  // namespace slipwalk::sweeps

@@ -1,5 +1,5 @@
 // slipwalk reproduce [--quick] [--jobs N] [--data DIR] [--report DIR] [--studies DIR] [--fresh]
-// [STUDY...]: every study's traces and sweeps, then the report (sweeps/README.md).
+// [STUDY...]: every study's traces, scene runs and sweeps, then the report (sweeps/README.md).
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>  // environ
@@ -123,6 +123,12 @@ struct ReproduceCommand {
         std::cout << "  trace " << trace.name << " -> " << csv.string() << " ("
                   << seconds(since(t0)) << ")" << std::endl;
       }
+      for (const auto& scene : l.study.scenes) {
+        const auto t0 = Clock::now();
+        const fs::path csv = sweeps::write_scene_job(l.study, scene, data, quick);
+        std::cout << "  scene " << scene.name << " -> " << csv.string() << " ("
+                  << seconds(since(t0)) << ")" << std::endl;
+      }
       for (const auto& sweep : l.sweeps) {
         const auto t0 = Clock::now();
         const sweeps::RunSummary s = sweeps::run(sweep, options);
@@ -165,8 +171,8 @@ struct ReproduceCommand {
 
 void add_reproduce_command(CLI::App& app) {
   auto cmd = std::make_shared<ReproduceCommand>();
-  auto* sub =
-      app.add_subcommand("reproduce", "run every study's traces and sweeps, then the report");
+  auto* sub = app.add_subcommand(
+      "reproduce", "run every study's traces, scene runs and sweeps, then the report");
   sub->add_option("STUDY", cmd->names,
                   "studies to run (folder names under --studies; default all)");
   sub->add_flag("--quick", cmd->quick, "the specs' [quick] overrides: a smoke run");

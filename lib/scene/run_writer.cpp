@@ -1,0 +1,108 @@
+// The trajectory CSV and sidecar of a scene run (run_writer.hpp has the columns).
+#include "scene/run_writer.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/atomic_file.hpp"
+#include "core/csv.hpp"
+#include "core/error.hpp"
+#include "core/provenance.hpp"
+
+namespace slipwalk::scene {
+
+std::vector<std::string> run_columns(const robots::Walker& walker, bool filtered, bool phases) {
+  std::vector<std::string> cols{"t", "x", "y", "theta", "vx", "vy", "omega"};
+  if (filtered) {
+    cols.insert(cols.end(), {"vx_model", "vy_model", "omega_model"});
+  }
+  const bool named = static_cast<int>(walker.leg_names.size()) == walker.legs();
+  for (int k = 0; k < walker.legs(); ++k) {
+    const std::string leg =
+        named ? walker.leg_names[static_cast<std::size_t>(k)] : std::to_string(k);
+    for (const char* c : {"contact_", "Fz_", "Fx_", "Fy_", "slip_x_", "slip_y_"}) {
+      cols.push_back(std::string(c).append(leg));
+    }
+    if (phases) {
+      cols.push_back(std::string("phase_").append(leg));
+    }
+  }
+  cols.insert(cols.end(), {"alpha", "beta", "z"});
+  return cols;
+}
+
+RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesystem::path& csv_path,
+                    const nlohmann::json& extra, std::ostream* progress) {
+  std::filesystem::path sidecar_path = csv_path;
+  sidecar_path.replace_extension(".json");
+  if (sidecar_path == csv_path) {
+    std::string what = "'";
+    what.append(csv_path.string()).append("' would be overwritten by its sidecar; use .csv");
+    throw core::InputError("--out", what);
+  }
+  RunResult result;
+  const bool filtered = scene.filter.has_value();
+  const bool phases = static_cast<bool>(sim.walker.phase);
+  result.columns = run_columns(sim.walker, filtered, phases);
+
+  // One row per frame, into a temporary file renamed when complete.
+  core::AtomicFile file(csv_path);
+  core::CsvWriter csv(file.stream(), result.columns);
+  Eigen::VectorXd phase = Eigen::VectorXd::Zero(sim.walker.legs());
+  const long long frames = sim.options.steps + 1;
+  const long long every = std::max<long long>(1, frames / 10);
+  const auto start = std::chrono::steady_clock::now();
+  result.summary = sim.run([&](const connection::TrajectoryStep& s) {
+    csv.cell(s.t).cell(s.pose.x).cell(s.pose.y).cell(s.pose.theta);
+    csv.cell(s.v_body(0)).cell(s.v_body(1)).cell(s.v_body(2));
+    if (filtered) {
+      csv.cell(s.v_model(0)).cell(s.v_model(1)).cell(s.v_model(2));
+    }
+    if (phases) {
+      sim.walker.phase(s.t, phase);
+    }
+    for (int k = 0; k < s.frame.legs(); ++k) {
+      csv.cell(static_cast<int>(s.frame.contact[static_cast<std::size_t>(k)]));
+      csv.cell(s.frame.Fz(k)).cell(s.frame.Fxy(0, k)).cell(s.frame.Fxy(1, k));
+      csv.cell(s.slip(0, k)).cell(s.slip(1, k));
+      if (phases) {
+        csv.cell(phase(k));
+      }
+    }
+    csv.cell(s.frame.alpha).cell(s.frame.beta).cell(s.frame.z);
+    csv.end_row();
+    if (progress != nullptr && (s.n + 1) % every == 0) {
+      *progress << "slipwalk run: " << (s.n + 1) << "/" << frames
+                << " frames (t = " << core::format_double(s.t) << " s)" << std::endl;
+    }
+  });
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  file.commit();
+
+  // The provenance sidecar.
+  nlohmann::json sidecar = extra.is_object() ? extra : nlohmann::json::object();
+  const connection::TrajectorySummary& summary = result.summary;
+  sidecar.update({
+      {"scene_file", scene.path},
+      {"scene", to_json(scene)},
+      {"walker", sim.walker.name},
+      {"legs", sim.walker.leg_names},
+      {"kernel", sim.kernel_name},
+      {"csv", csv_path.filename().string()},
+      {"columns", result.columns},
+      {"frames", summary.frames},
+      {"summary",
+       {{"unsupported_frames", summary.unsupported},
+        {"not_converged_frames", summary.not_converged},
+        {"not_unique_frames", summary.not_unique},
+        {"max_friction_residual", summary.max_friction_residual},
+        {"message", summary.message}}},
+      {"wall_s", result.wall_s},
+      {"threads", 1},
+      {"provenance", core::build_provenance()},
+  });
+  core::write_file_atomically(sidecar_path, sidecar.dump(1) + "\n");
+  return result;
+}
+
+}  // namespace slipwalk::scene

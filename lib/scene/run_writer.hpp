@@ -1,0 +1,40 @@
+#pragma once
+// The trajectory CSV of a scene run and its provenance sidecar (issue 6), shared by
+// `slipwalk run` and the [[scene]] entries of a study (`slipwalk reproduce`).
+//
+// Columns: t, x, y, theta (world pose; theta unwrapped), vx, vy, omega (the body velocity that
+// moves the pose, body frame), with the filter also vx_model, vy_model, omega_model (before the
+// filter); then per leg L (the walker's leg names): contact_L (0/1), Fz_L, Fx_L, Fy_L (planar
+// force on the foot, body frame), slip_x_L, slip_y_L (the foot's velocity over the ground, body
+// frame: the slip velocity when in contact), and phase_L when the gait defines phases; last
+// alpha, beta, z: the spring support's ground plane (eq. 3.6: roll and pitch slopes, body height,
+// m), from which the roll and pitch of Fig. 3.5 follow (appended so the leg columns keep their
+// places).
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace slipwalk::scene {
+
+/// The CSV columns of a run of `walker` (see above).
+[[nodiscard]] std::vector<std::string> run_columns(const robots::Walker& walker, bool filtered,
+                                                   bool phases);
+
+struct RunResult {
+  connection::TrajectorySummary summary;
+  std::vector<std::string> columns;
+  double wall_s = 0.0;  ///< the run and its CSV, s
+};
+
+/// Runs `sim` (composed from `scene`) and writes <csv> (a temporary renamed when complete) and
+/// its sidecar <csv stem>.json: `extra`'s keys first, then the scene, walker, kernel, columns,
+/// the run's summary, wall time and build provenance. `progress`, when given, gets ten lines.
+/// Throws core::InputError("--out") when the sidecar would overwrite the CSV (name it .csv).
+RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesystem::path& csv,
+                    const nlohmann::json& extra, std::ostream* progress);
+
+}  // namespace slipwalk::scene
