@@ -86,6 +86,13 @@ COST_PAGE = "cost_of_accuracy.html"
 # (perf_legged_body.html).
 SCRIPTS += ["cost_friction", "perf_legged"]
 SCRIPT_STUDY.update({"cost_friction": "cost_of_accuracy", "perf_legged": "ch3_legged"})
+# §3.5 walking robots (issue 6): synthetic analogs of Figs. 3.5-3.12 from the scene runs of
+# studies/ch3_robots, in the chapter 3 section.
+ROBOT_FIGS = ["fig3_5", "fig3_6_9", "fig3_7_10", "fig3_8", "fig3_11", "fig3_12"]
+SCRIPTS += ROBOT_FIGS
+SCRIPT_STUDY.update({name: "ch3_robots" for name in ROBOT_FIGS})
+STUDIES.append("ch3_robots")
+WIDE.update(ROBOT_FIGS)
 
 
 # ---------------------------------------------------------------------------------------------

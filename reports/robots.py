@@ -1,0 +1,97 @@
+"""Shared helpers of the walking-robot figures (thesis §3.5, Figs. 3.5-3.12; issue 6).
+
+Their data live in DATA/ch3_robots/<run>.csv (`slipwalk reproduce ch3_robots`: one scene run
+each, the columns of `slipwalk run`, scene/run_writer.hpp) with a sidecar naming the scene,
+walker and legs. Every run is synthetic: the thesis' motion capture and F/T data are not ours.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+import common as c
+
+STUDY = "ch3_robots"
+# The thesis' colours: viscous-Coulomb orange, Coulomb blue, spring support purple.
+VISCOUS, COULOMB, SUPPORT = "tab:orange", "tab:blue", "tab:purple"
+
+
+class Run:
+    """One scene run: its table, sidecar and leg names."""
+
+    def __init__(self, data: Path, name: str):
+        path = data / STUDY / f"{name}.csv"
+        if not path.is_file():
+            c.fail(f"{path}: input file missing (run `slipwalk reproduce {STUDY}` to produce it)")
+        self.name = name
+        self.t = c.Table(path, ["t", "x", "y", "theta", "vx", "vy", "omega", "alpha", "beta"])
+        if self.t.n < 2:
+            c.fail(f"{path}: fewer than two rows")
+        side = path.with_suffix(".json")
+        try:
+            self.meta = json.loads(side.read_text()) if side.is_file() else {}
+        except json.JSONDecodeError as e:
+            c.fail(f"{side}: not valid JSON: {e}")
+        self.legs = list(self.meta.get("legs") or [])
+        if not self.legs:
+            self.legs = [col[len("contact_"):] for col in self.t.columns
+                         if col.startswith("contact_")]
+        self.time = self.t["t"]
+        self.dt = float(self.time[1] - self.time[0])
+
+    def __getitem__(self, col: str) -> np.ndarray:
+        return self.t[col]
+
+    def leg(self, what: str, leg: str) -> np.ndarray:
+        return self.t[f"{what}_{leg}"]
+
+    def roll_pitch_deg(self) -> tuple[np.ndarray, np.ndarray]:
+        """Roll and pitch of the body over the support plane of eq. 3.6, in degrees: a foot's
+        height is -beta q_x + alpha q_y + q_z + z, so the ground tilts by atan(alpha) about x and
+        atan(beta) about y in the body frame."""
+        return np.degrees(np.arctan(self["alpha"])), np.degrees(np.arctan(self["beta"]))
+
+    def quick(self) -> bool:
+        return bool(self.meta.get("quick", False))
+
+
+def note_synthetic(fig, text: str) -> None:
+    fig.text(0.5, 0.003, text, ha="center", va="bottom", fontsize=7, color="0.35")
+
+
+def rms(x: np.ndarray) -> float:
+    x = np.asarray(x, float)
+    return float(np.sqrt(np.mean(x * x))) if x.size else float("nan")
+
+
+def mg(run: Run) -> np.ndarray:
+    """Mg per frame: the normal loads sum to the weight (eq. 3.7)."""
+    return np.sum([run.leg("Fz", leg) for leg in run.legs], axis=0)
+
+
+def planar(run: Run) -> tuple[np.ndarray, np.ndarray]:
+    """(frames x legs) F_x and F_y of every leg."""
+    fx = np.stack([run.leg("Fx", leg) for leg in run.legs], axis=1)
+    fy = np.stack([run.leg("Fy", leg) for leg in run.legs], axis=1)
+    return fx, fy
+
+
+def sigma(pred_x, pred_y, ref_x, ref_y) -> np.ndarray:
+    """The thesis' per-frame scale (§3.5.1.4): sigma = argmin_c sum_k (c|F^_k| - |F_k|)^2 =
+    sum |F^||F| / sum |F^|^2, because the model defines the forces up to a positive factor.
+    Here the reference is the Coulomb run (the thesis': the F/T measurements)."""
+    a = np.hypot(pred_x, pred_y)
+    b = np.hypot(ref_x, ref_y)
+    den = np.sum(a * a, axis=1)
+    return np.where(den > 0, np.sum(a * b, axis=1) / np.where(den > 0, den, 1.0), 0.0)
+
+
+def flat_zero(ax, y, unit: str, what: str = "mirror-symmetric gait") -> None:
+    """A signal that is zero to rounding: say so rather than plot 1e-17 noise at full scale."""
+    lim = float(np.max(np.abs(y))) if np.size(y) else 0.0
+    if lim < 1e-9:
+        ax.set_ylim(-1.0, 1.0)
+        ax.text(0.5, 0.75, f"≡ 0 to rounding ({lim:.0e} {unit}): {what}",
+                transform=ax.transAxes, ha="center", fontsize=7.5, color="0.3")
