@@ -34,18 +34,23 @@ Contacts prepare(const contact::Robot& robot, contact::Frame& frame) {
 bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol) {
   // Unpivoted LDLᵀ of a symmetric matrix; a pivot ≤ pivot_tol · trace means "not definite".
   const double floor = pivot_tol * std::max(M.trace(), 0.0);
+  // The reciprocal pivots are kept: solve() then multiplies (a 3 × 3 solve sits on the serial
+  // path of every Newton step, where a division's latency shows).
   d_(0) = M(0, 0);
   if (!(d_(0) > floor)) {
     return false;
   }
-  l10_ = M(1, 0) / d_(0);
-  l20_ = M(2, 0) / d_(0);
-  d_(1) = M(1, 1) - l10_ * l10_ * d_(0);
+  inv_d_(0) = 1.0 / d_(0);
+  l10_ = M(1, 0) * inv_d_(0);
+  l20_ = M(2, 0) * inv_d_(0);
+  d_(1) = M(1, 1) - l10_ * M(1, 0);
   if (!(d_(1) > floor)) {
     return false;
   }
-  l21_ = (M(2, 1) - l20_ * l10_ * d_(0)) / d_(1);
-  d_(2) = M(2, 2) - l20_ * l20_ * d_(0) - l21_ * l21_ * d_(1);
+  inv_d_(1) = 1.0 / d_(1);
+  l21_ = (M(2, 1) - l20_ * M(1, 0)) * inv_d_(1);
+  d_(2) = M(2, 2) - l20_ * M(2, 0) - l21_ * l21_ * d_(1);
+  inv_d_(2) = 1.0 / d_(2);
   return d_(2) > floor;
 }
 
@@ -84,9 +89,9 @@ Eigen::Vector3d Psd3::solve(const Eigen::Vector3d& b) const {
     const double z0 = b(0);
     const double z1 = b(1) - l10_ * z0;
     const double z2 = b(2) - l20_ * z0 - l21_ * z1;
-    const double x2 = z2 / d_(2);
-    const double x1 = z1 / d_(1) - l21_ * x2;
-    const double x0 = z0 / d_(0) - l10_ * x1 - l20_ * x2;
+    const double x2 = z2 * inv_d_(2);
+    const double x1 = z1 * inv_d_(1) - l21_ * x2;
+    const double x0 = z0 * inv_d_(0) - l10_ * x1 - l20_ * x2;
     return {x0, x1, x2};
   }
   return V_ * inv_lambda_.cwiseProduct(V_.transpose() * b);

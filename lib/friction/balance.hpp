@@ -162,6 +162,7 @@ class Psd3 {
   int rank_ = 3;
   double l10_ = 0, l20_ = 0, l21_ = 0;
   Eigen::Vector3d d_ = Eigen::Vector3d::Ones();
+  Eigen::Vector3d inv_d_ = Eigen::Vector3d::Ones();       ///< 1/d_
   Eigen::Matrix3d V_ = Eigen::Matrix3d::Identity();       ///< eigenvectors (eigen path)
   Eigen::Vector3d inv_lambda_ = Eigen::Vector3d::Zero();  ///< 1/λ or 0 (eigen path)
 };
