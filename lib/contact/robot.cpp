@@ -63,8 +63,8 @@ Frame::Frame(const Robot& robot)
       work_n(Eigen::VectorXd::Zero(robot.legs())),
       work_2n(Eigen::Matrix2Xd::Zero(2, robot.legs())),
       work_idx(static_cast<std::size_t>(robot.legs()), 0),
-      work_rows(Eigen::Matrix<double, 12, Eigen::Dynamic, Eigen::RowMajor>::Zero(
-          12, (robot.legs() + 1) / 2 * 2)) {}
+      work_rows(Eigen::Matrix<double, 13, Eigen::Dynamic, Eigen::RowMajor>::Zero(
+          13, (robot.legs() + 1) / 2 * 2)) {}
 
 void check_frame(const Robot& robot, const Frame& frame) {
   const int n = robot.legs();

@@ -100,9 +100,9 @@ struct Frame {
   Eigen::VectorXd work_n;     ///< (N)
   Eigen::Matrix2Xd work_2n;   ///< (2 x N)
   std::vector<int> work_idx;  ///< (N)
-  /// (12 x N rounded up to even) per-foot quantities stored as rows, so that a pass over the
+  /// (13 x N rounded up to even) per-foot quantities stored as rows, so that a pass over the
   /// feet handles two feet per SIMD instruction (friction/coulomb.cpp)
-  Eigen::Matrix<double, 12, Eigen::Dynamic, Eigen::RowMajor> work_rows;
+  Eigen::Matrix<double, 13, Eigen::Dynamic, Eigen::RowMajor> work_rows;
 
   [[nodiscard]] int legs() const { return static_cast<int>(q.cols()); }
 };

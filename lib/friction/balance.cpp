@@ -33,25 +33,28 @@ Contacts prepare(const contact::Robot& robot, contact::Frame& frame) {
 
 bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol) {
   // Unpivoted LDLᵀ of a symmetric matrix; a pivot ≤ pivot_tol · trace means "not definite".
+  // Written through the leading minors m₁, m₂, m₃ (d₀ = m₁, d₁ = m₂/m₁, d₂ = m₃/m₂), so that the
+  // three divisions are independent instead of chained, and the reciprocal pivots are kept for
+  // solve(): a 3 × 3 solve sits on the serial path of every Newton step, where latency shows.
   const double floor = pivot_tol * std::max(M.trace(), 0.0);
-  // The reciprocal pivots are kept: solve() then multiplies (a 3 × 3 solve sits on the serial
-  // path of every Newton step, where a division's latency shows).
-  d_(0) = M(0, 0);
-  if (!(d_(0) > floor)) {
+  const double m1 = M(0, 0);
+  const double m2 = M(0, 0) * M(1, 1) - M(1, 0) * M(1, 0);
+  const double c0 = M(1, 1) * M(2, 2) - M(2, 1) * M(2, 1);
+  const double c1 = M(2, 0) * M(2, 1) - M(1, 0) * M(2, 2);
+  const double c2 = M(1, 0) * M(2, 1) - M(2, 0) * M(1, 1);
+  const double m3 = M(0, 0) * c0 + M(1, 0) * c1 + M(2, 0) * c2;
+  if (!(m1 > floor && m2 > floor * m1 && m3 > floor * m2)) {
     return false;
   }
-  inv_d_(0) = 1.0 / d_(0);
-  l10_ = M(1, 0) * inv_d_(0);
-  l20_ = M(2, 0) * inv_d_(0);
-  d_(1) = M(1, 1) - l10_ * M(1, 0);
-  if (!(d_(1) > floor)) {
-    return false;
-  }
-  inv_d_(1) = 1.0 / d_(1);
-  l21_ = (M(2, 1) - l20_ * M(1, 0)) * inv_d_(1);
-  d_(2) = M(2, 2) - l20_ * M(2, 0) - l21_ * l21_ * d_(1);
-  inv_d_(2) = 1.0 / d_(2);
-  return d_(2) > floor;
+  const double i1 = 1.0 / m1;
+  const double i2 = 1.0 / m2;
+  const double i3 = 1.0 / m3;
+  d_ << m1, m2 * i1, m3 * i2;
+  inv_d_ << i1, m1 * i2, m2 * i3;
+  l10_ = M(1, 0) * i1;
+  l20_ = M(2, 0) * i1;
+  l21_ = (M(2, 1) * M(0, 0) - M(2, 0) * M(1, 0)) * i2;
+  return true;
 }
 
 bool Psd3::factorize_definite(const Eigen::Matrix3d& M, double pivot_tol) {

@@ -38,7 +38,9 @@ void solve_epsilon(const contact::Robot& robot, contact::Frame& frame, double ep
 
 struct CoulombOptions {
   double tol = 1e-10;        ///< target of the certificate, the relative duality gap; valid: > 0
-  int max_iterations = 500;  ///< Newton steps (smoothing path and polish together)
+  int max_iterations = 500;  ///< Newton steps (fast path, smoothing path and polish together)
+  bool fast_path = true;     ///< try Newton with the kink model first (friction/coulomb.cpp);
+                             ///< false: the smoothing path alone (a reference for tests)
 };
 
 /// Classical Coulomb friction, F_k = −μ_k F_z,k u_k/‖u_k‖ (eq. 3.13; anisotropic: the friction

@@ -13,6 +13,7 @@
 
 #include "contact/robot.hpp"
 #include "core/error.hpp"
+#include "friction/coulomb_solver.hpp"
 #include "friction/solvers.hpp"
 
 namespace slipwalk::friction {
@@ -702,6 +703,114 @@ TEST(FrictionHardCases, WildScalesStayFinite) {
       EXPECT_TRUE(s.frame.v_body.allFinite());
     }
   }
+}
+
+// ---- the fast path (kink Newton) against the smoothing path, and its kink model -------------
+
+/// Six feet in mirror pairs about the x axis, moving mirror-symmetrically: two feet come to rest
+/// at once, which the fast path hands over to the smoothing path.
+Scene mirror_scene(std::mt19937& rng) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  Scene s(6);
+  for (int k = 0; k < 3; ++k) {
+    const Vector2d q(-0.25 + 0.25 * k + 0.05 * U(rng), 0.15 + 0.02 * U(rng));
+    const Vector2d qd(0.1 * U(rng), 0.02 * U(rng));
+    s.frame.q.col(k) << q, -0.1;
+    s.frame.q.col(k + 3) << q(0), -q(1), -0.1;
+    s.frame.qdot.col(k) << qd, 0.0;
+    s.frame.qdot.col(k + 3) << qd(0), -qd(1), 0.0;
+    s.frame.Fz(k) = s.frame.Fz(k + 3) = 0.5 + 0.5 * std::abs(U(rng));
+  }
+  return s;
+}
+
+TEST(Coulomb, FastPathAgreesWithTheSmoothingPath) {
+  std::mt19937 rng(18);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 2 + trial % 11;
+    Scene s = trial % 10 == 9 ? mirror_scene(rng) : random_scene(rng, n, trial % 3 == 0);
+    CoulombOptions path;
+    path.fast_path = false;
+    solve_coulomb(s.robot, s.frame, path);
+    expect_certified(s, 1e-10, "smoothing path");
+    const Vector3d v_path = s.frame.v_body;
+    const contact::FrictionSummary ref = s.frame.friction;
+    solve_coulomb(s.robot, s.frame);
+    expect_certified(s, 1e-10, "fast path");
+    EXPECT_NEAR(s.frame.friction.dissipation, ref.dissipation, 1e-10 * ref.dissipation)
+        << "trial " << trial;
+    EXPECT_EQ(s.frame.friction.unique, ref.unique) << "trial " << trial;
+    if (ref.unique) {
+      EXPECT_LE((s.frame.v_body - v_path).norm(), 1e-9 * (1.0 + v_path.norm()))
+          << "trial " << trial;
+      EXPECT_EQ(s.frame.friction.static_feet, ref.static_feet) << "trial " << trial;
+    }
+  }
+}
+
+TEST(Coulomb, MirrorSymmetricFramesGiveSymmetricAnswers) {
+  // Mirror symmetry about the x axis maps (v_x, v_y, ω) to (v_x, −v_y, −ω): a unique answer has
+  // v_y = ω = 0, to the accuracy of the final Newton step (not only of the certificate).
+  std::mt19937 rng(19);
+  for (int trial = 0; trial < 30; ++trial) {
+    Scene s = mirror_scene(rng);
+    solve_coulomb(s.robot, s.frame);
+    expect_certified(s, 1e-10, "mirror");
+    if (s.frame.friction.unique) {
+      EXPECT_LE(std::abs(s.frame.v_body(1)), 1e-13) << "trial " << trial;
+      EXPECT_LE(std::abs(s.frame.v_body(2)), 1e-12) << "trial " << trial;
+    }
+  }
+}
+
+TEST(CoulombKinkStep, SatisfiesTheOptimalityConditionsOfItsModel) {
+  // m(p) = gᵀp + ½ pᵀHp + ‖r + Bp‖ is convex; p is its minimizer iff g + Hp + Bᵀλ = 0 with
+  // λ = u/‖u‖ (u = r + Bp ≠ 0) or ‖λ‖ ≤ 1 (u = 0). Checked on random models, H of rank 3 and 2.
+  std::mt19937 rng(20);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int sticks = 0;
+  int slides = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    Eigen::Matrix<double, 3, 3> A;
+    for (int i = 0; i < 9; ++i) {
+      A(i) = U(rng);
+    }
+    if (trial % 2 == 1) {
+      A.col(2).setZero();  // rank 2: the model is bounded only through the kink foot
+    }
+    const Eigen::Matrix3d H = A * A.transpose();
+    const Vector3d g(U(rng), U(rng), U(rng));
+    const double c = 0.2 + std::abs(U(rng));
+    const Vector2d w(U(rng), U(rng));
+    const Matrix2d W =
+        Matrix2d::Identity() + (1.0 / (1.0 + std::sqrt(1.0 + w.squaredNorm()))) * w * w.transpose();
+    Eigen::Matrix<double, 2, 3> B;
+    B.leftCols<2>() = c * W;
+    B.col(2) = c * W * Vector2d(U(rng), U(rng));
+    const Vector2d r = std::pow(10.0, -3.0 * std::abs(U(rng))) * Vector2d(U(rng), U(rng));
+    coulomb::KinkStep st;
+    if (!coulomb::kink_step(g, H, B, r, r.norm(), st)) {
+      continue;  // a degenerate model (H flat about the foot, or unbounded): said so
+    }
+    const Vector2d u = r + B * st.p;
+    const double scale = g.norm() + H.norm() * st.p.norm() + B.norm();
+    EXPECT_LE((g + H * st.p + B.transpose() * st.lam).norm(), 1e-9 * scale) << trial;
+    if (st.stick) {
+      ++sticks;
+      EXPECT_LE(u.norm(), 1e-12 * (r.norm() + B.norm() * st.p.norm())) << trial;
+      EXPECT_LE(st.lam.norm(), 1.0) << trial;
+    } else {
+      ++slides;
+      EXPECT_NEAR(st.lam.norm(), 1.0, 1e-12) << trial;
+      EXPECT_LE((st.lam - u.normalized()).norm(), 1e-7) << trial;
+    }
+    const auto m = [&](const Vector3d& p) {
+      return g.dot(p) + 0.5 * p.dot(H * p) + (r + B * p).norm();
+    };
+    EXPECT_NEAR(st.decrease, m(Vector3d::Zero()) - m(st.p), 1e-12 * (1.0 + std::abs(st.decrease)));
+  }
+  EXPECT_GT(sticks, 100);
+  EXPECT_GT(slides, 100);
 }
 
 TEST(Coulomb, ToleranceOptionIsHonoured) {

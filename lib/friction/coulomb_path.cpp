@@ -1,0 +1,469 @@
+// The smoothing path and its active-set polish: the Coulomb solver's fallback when the fast path
+// (coulomb.cpp; problem, dual and certificate are described there) does not certify, e.g. with
+// several feet at rest at once, and its way to certify frames whose static feet sit at distinct
+// points (a rigid gait).
+//
+//  1. Smoothing path: damped Newton steps (Armijo) on D_δ(y) = Σ √(‖r_k‖² + δ²) (smooth,
+//     convex, its Hessian regularized only along directions no foot feels); a stage ends when
+//     the Newton decrement falls below 3δ (or after 8 steps), and δ is then divided by 10, from
+//     δ₀ = 0.1 D(start)/N down to δ_min = 0.1 tol D/N, where the smoothing error alone is within
+//     the tolerance. Near δ_min the path's own dual λ_k = r_k/√(‖r_k‖² + δ²) is certified too.
+//  2. Polish at the end of each stage (active set): feet with ‖r_k‖ ≤ min(10 δ, 0.01 D/N) are
+//     static, and so is the slowest other foot if it is clearly apart (‖r‖ ≤ 0.1 × the next
+//     and ≤ 10³ δ: a static foot whose force lies near the rim of its disk keeps
+//     ‖r‖ = δ t/√(1 − t²) on the path). The body velocity is restricted to where the static feet
+//     do not slip — a point if they span two distinct points, the rotations about their common
+//     point if one, all of R³ if none — and the exact D of the sliding feet is minimized there
+//     by Newton's method, which is smooth and converges quadratically if the static set is right
+//     (the attempt is abandoned as soon as it does not: a step cut below 1/2, or a decrement
+//     not falling 4× per step). Its dual is the fast path's (linearized directions) plus the
+//     static feet's forces that balance the sliding feet (for static feet at distinct points,
+//     whose internal force is free, a balancing choice inside the disks: fit_static_forces).
+//     A right static set certifies to ~1e-15 in 1–3 steps.
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "friction/coulomb_solver.hpp"
+
+namespace slipwalk::friction::coulomb {
+
+namespace {
+
+constexpr double kDelta0 = 0.1;  // δ₀ = kDelta0 · D(start)/N
+constexpr double kSigma = 0.1;   // δ ← kSigma δ at the end of a stage
+constexpr double kKappa = 10.0;  // static: ‖r_k‖ ≤ kKappa δ
+
+}  // namespace
+
+void Solver::path(Eigen::Vector3d y, Sums& S, double Dref) {
+  auto& s = frame_.friction;
+  const int n = std::max(cs_.active, 1);
+  const double delta_min = std::max(0.1 * options_.tol * Dref / n, 64.0 * kEps * Dref / n);
+  double delta = std::max(kDelta0 * value<true>(y, 0.0) / n, delta_min);
+  assemble<true>(y, delta * delta, S);
+  int stage_steps = 0;
+  bool stalled = false;
+  bool fresh = true;  // row kR2Row holds ‖r_k(y)‖² (try_polish classifies from it)
+  while (s.iterations < options_.max_iterations) {
+    const Eigen::Vector3d p = smoothing_step(S);
+    const double slope = S.g.dot(p);
+    if (!(-slope > 3.0 * delta) || stalled || stage_steps >= 8 || delta <= delta_min) {
+      // End of a stage at y.
+      if (delta <= 1e3 * delta_min) {
+        // The smoothing path's own dual λ_k = r_k/ρ_k: its gap is O(N δ / D), so it is only
+        // worth checking near the end of the path.
+        const Dual dual{true, delta * delta, Eigen::Vector3d::Zero(), S.g};
+        if (path_bound(y, S, delta) <= options_.tol) {
+          classify(kKappa * delta);
+          finish(y, dual);
+          return;
+        }
+      }
+      if (!fresh) {
+        assemble<true>(y, delta * delta, S);  // ‖r_k(y)‖² back into row kR2Row
+      }
+      Eigen::Vector3d yp = y;
+      Dual dual;
+      fresh = false;  // a polish moves y
+      if (try_polish(yp, std::min(kKappa * delta, 1e-2 * Dref / n), delta, dual)) {
+        finish(yp, dual);
+        return;
+      }
+      if (delta > delta_min) {
+        delta = std::max(kSigma * delta, delta_min);
+        assemble<true>(y, delta * delta, S);
+        fresh = true;
+        stage_steps = 0;
+        stalled = false;
+        continue;
+      }
+    }
+    // One damped Newton step on D_δ (Armijo); the pass at the trial point is the next step's.
+    ++s.iterations;
+    ++stage_steps;
+    stalled = !(slope < 0.0) || !line_search<true>(y, p, slope, delta * delta, 60, 0.0, S);
+    fresh = fresh || !stalled;
+  }
+  // Out of iterations: the last point of the path with its own dual.
+  classify(kKappa * delta);
+  finish(y, Dual{true, delta * delta, Eigen::Vector3d::Zero(), S.g});
+}
+
+/// Armijo line search along p from y (Sums S at y), folded into the passes: the pass at the
+/// full step is also the next step's assembly; only a rejected step costs extra (value passes,
+/// t halved at most `halvings` times, never below t_min). On success y and S move to the
+/// accepted point; on failure they stay.
+template <bool kAll>
+bool Solver::line_search(Eigen::Vector3d& y, const Eigen::Vector3d& p, double slope, double d2,
+                         int halvings, double t_min, Sums& S) {
+  const double f0 = S.f;
+  const double slack = 8.0 * kEps * f0;
+  Sums T;
+  assemble<kAll>(y + p, d2, T);
+  if (T.f <= f0 + 1e-4 * slope + slack) {
+    y += p;
+    S = T;
+    return true;
+  }
+  double t = 0.5;
+  for (int j = 1; j < halvings && t >= t_min; ++j, t *= 0.5) {
+    if (value<kAll>(y + t * p, d2) <= f0 + 1e-4 * t * slope + slack) {
+      y += t * p;
+      assemble<kAll>(y, d2, S);
+      return true;
+    }
+  }
+  return false;
+}
+
+/// The Newton step of the smoothing path. H is positive definite on the range of M₂ (whatever
+/// δ: no rank threshold here, the directions of a foot near rest are legitimately stiff); its
+/// null space (contacts at one point) is filled in so that the step has no component there.
+Eigen::Vector3d Solver::smoothing_step(const Sums& S) const {
+  Eigen::Matrix3d H = S.H;
+  dual_.add_null_space(H, H.trace());
+  detail::Psd3 solver;
+  if (!solver.factorize_definite(H, 0.0)) {
+    solver.factorize(H);
+  }
+  return -solver.solve(S.g);
+}
+
+/// The smoothing dual λ_k = r_k/ρ_k at y: Σ λᵀd = Σ ‖r‖²/ρ − yᵀg, ‖λ_k‖ ≤ √(1 − δ²/ρ_max²),
+/// imbalance g; D(y) ≤ Σ ρ and max(D, D(0)) ≥ max(Σ ρ − N δ, D(0)).
+double Solver::path_bound(const Eigen::Vector3d& y, const Sums& S, double delta) const {
+  const double d2 = delta * delta;
+  const double value = S.f - d2 * S.inv_rho - y.dot(S.g);
+  const double lmax = std::sqrt(std::max(1.0 - d2 / (S.rho_max * S.rho_max), 0.0));
+  const double lower = std::max(S.f - cs_.active * delta, 0.0);
+  const double gap = bound(S.f, value, lmax, S.g);
+  const double denom = std::max(S.f, D0_);
+  return gap * denom / std::max(std::max(lower, D0_), kEps * denom);
+}
+
+/// The polish dual at y with step p (Sums S of the sliding feet): Σ_slide B_kᵀλ_k = g + H p =
+/// g', Σ_slide λ_kᵀd_k = Σ ‖r_k‖ − g'ᵀy (as n_k⊥ ⊥ r_k), ‖λ_k‖² = 1 + (t_kᵀp)²/‖r_k‖² ≤
+/// 1 + pᵀHp/min ‖r‖; the static feet balance g' (static_duals, written to work_2n).
+double Solver::polish_bound(const Eigen::Vector3d& y, const Sums& S, const Eigen::Vector3d& p,
+                            int dim, int n_static, Dual& dual) {
+  const Eigen::Vector3d gp = S.g + S.H * p;
+  const double dec = p.dot(S.H * p);
+  double lmax = S.r2_min < kInf ? std::sqrt(1.0 + std::max(dec, 0.0) / std::sqrt(S.r2_min)) : 1.0;
+  StaticDual st;
+  if (n_static > 0 && dim > 0) {
+    st = static_duals(y, gp);
+    lmax = std::max(lmax, st.lmax);
+  }
+  dual = Dual{false, 0.0, p, gp + st.force};
+  return bound(S.f + st.primal, S.f - gp.dot(y) + st.value, lmax, dual.h);
+}
+
+/// Static feet at one point (dim 1) share the force that balances g' in proportion to c_k:
+/// c_k W_k λ_k = −(c_k/Σ_S c) g'_xy, i.e. B_k,xy λ_k = −(c_k/Σ_S c) g'_xy; the moment about
+/// their point is then balanced too when eᵀg' = 0 (the Newton equation along e). Writes λ_k to
+/// work_2n.
+StaticDual Solver::static_duals(const Eigen::Vector3d& y, const Eigen::Vector3d& gp) {
+  StaticDual st;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) != kStatic) {
+      continue;
+    }
+    const auto Bk = B(k);
+    const Eigen::Vector2d lam = Bk.leftCols<2>().partialPivLu().solve(
+        Eigen::Vector2d(-(weight(k) / c_static_) * gp.head<2>()));
+    frame_.work_2n.col(k) = lam;
+    st.lmax = std::max(st.lmax, lam.norm());
+    st.value += lam.dot(d(k));
+    st.force += Bk.transpose() * lam;
+    st.primal += residual(k, y).norm();
+  }
+  return st;
+}
+
+void Solver::zero_static_duals() {
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kStatic) {
+      frame_.work_2n.col(k).setZero();
+    }
+  }
+}
+
+// ---- the active set ---------------------------------------------------------------------------
+/// Marks feet with ‖r_k‖ ≤ threshold static (from ‖r_k‖² in row kR2Row); returns how many.
+int Solver::classify(double threshold) {
+  const double t2 = threshold * threshold;
+  int n = 0;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    const bool st = at(kR2Row, k) <= t2;
+    set_state(k, st ? kStatic : kSlip);
+    n += st ? 1 : 0;
+  }
+  return n;
+}
+
+/// A polish attempt at the end of a smoothing stage (‖r_k(y)‖² in row kR2Row): the feet with
+/// ‖r_k‖ ≤ threshold are static, and the slowest other foot too if it is clearly apart (step 3
+/// of the header).
+bool Solver::try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual& dual) {
+  const double t2 = threshold * threshold;
+  // Classify, and find the three slowest sliding feet: k1, k2 with ‖r‖² = r1 ≤ r2 ≤ r3.
+  int k1 = -1;
+  int k2 = -1;
+  double r1 = kInf;
+  double r2 = kInf;
+  double r3 = kInf;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    const double nr = at(kR2Row, k);
+    set_state(k, nr <= t2 ? kStatic : kSlip);
+    if (state(k) == kStatic) {
+      continue;
+    }
+    if (nr < r1) {
+      r3 = r2;
+      r2 = r1;
+      k2 = k1;
+      r1 = nr;
+      k1 = k;
+    } else if (nr < r2) {
+      r3 = r2;
+      r2 = nr;
+      k2 = k;
+    } else if (nr < r3) {
+      r3 = nr;
+    }
+  }
+  const double apart = 1e3 * delta * 1e3 * delta;
+  if (k2 >= 0 && r2 <= 0.01 * r3 && r2 <= apart) {
+    set_state(k1, kStatic);  // two feet clearly apart (e.g. a rigid pair: their forces are
+    set_state(k2, kStatic);  // not unique, and either may sit on its rim)
+  } else if (k1 >= 0 && r1 <= 0.01 * r2 && r1 <= apart) {
+    set_state(k1, kStatic);
+  }
+  return polish(y, delta, dual);
+}
+
+/// Active-set polish from y (a point of the smoothing path at δ) with the static feet marked
+/// in work_idx. On success (relative gap ≤ tol) y and `dual` are the certified pair (static
+/// feet's λ in work_2n).
+bool Solver::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
+  auto& s = frame_.friction;
+  // ---- where the static feet do not slip: all of R³, a line or a point --------------------
+  // The path's dual of the static feet (λ = r/ρ) goes to work_2n as a start for
+  // fit_static_forces.
+  int n_static = 0;
+  int first = -1;
+  bool one_point = true;
+  Eigen::Matrix3d MS = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d bS = Eigen::Vector3d::Zero();
+  Eigen::Matrix2d GS = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d hS = Eigen::Vector2d::Zero();
+  c_static_ = 0.0;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) != kStatic) {
+      continue;
+    }
+    ++n_static;
+    if (first < 0) {
+      first = k;
+    } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).norm() > 1e-6 * cs_.L) {
+      one_point = false;
+    }
+    const auto Bk = B(k);
+    const Eigen::Vector2d r = residual(k, y);
+    const double rho = std::sqrt(r.squaredNorm() + delta * delta);
+    frame_.work_2n.col(k) = delta > 0.0 ? Eigen::Vector2d(r / rho) : Eigen::Vector2d::Zero();
+    MS += Bk.transpose() * Bk;
+    bS += Bk.transpose() * d(k);
+    GS += Bk.leftCols<2>().transpose() * Bk.leftCols<2>();
+    hS += Bk.leftCols<2>().transpose() * d(k);
+    c_static_ += weight(k);
+  }
+  int dim = 3;
+  Eigen::Vector3d e = Eigen::Vector3d::Zero();
+  detail::Psd3 static_solver;
+  if (n_static > 0 && one_point) {
+    // v = −q̇_S − ω̃ s̃_p: the static feet's common point p stays put; ω̃ is free. s̃_p is the
+    // lever of the first static foot: B_xy⁻¹ B_ω.
+    dim = 1;
+    const auto Bf = B(first);
+    const Eigen::Vector2d sp = Bf.leftCols<2>().partialPivLu().solve(Eigen::Vector2d(Bf.col(2)));
+    y.head<2>() = -(GS.inverse() * hS) - y(2) * sp;
+    e = Eigen::Vector3d(-sp(0), -sp(1), 1.0).normalized();
+  } else if (n_static > 0) {
+    // Two or more distinct static points fix y; feet that then do not slip either (a rigid
+    // gait) join the static set, for the dual below.
+    dim = 0;
+    static_solver.factorize(MS);
+    y = -static_solver.solve(bS);
+    for (int k = 0; k < frame_.legs(); ++k) {
+      if (state(k) == kSlip && residual(k, y).norm() <= 1e-12 * D0_) {
+        set_state(k, kStatic);
+        frame_.work_2n.col(k).setZero();
+        ++n_static;
+        MS += B(k).transpose() * B(k);
+      }
+    }
+    static_solver.factorize(MS);
+  }
+  Sums S;
+  assemble<false>(y, 0.0, S);
+  if (!(S.r2_min > 1e-28 * D0_ * D0_)) {
+    return false;  // a sliding foot is at rest: the static set is wrong
+  }
+  if (dim == 0) {
+    return fixed_point_dual(y, S, static_solver, n_static, dual);
+  }
+
+  // ---- exact Newton on the sliding feet's D over that set (quadratic, or give up) ---------
+  // Armijo steps; the attempt is given up as soon as a step after the first needs damping
+  // below 1/2 or the decrement does not fall 4× per step. Each point is first checked with
+  // the dual of its Newton step, then (when the step is tiny) with the plain directions.
+  double prev = kInf;
+  for (int it = 0;; ++it) {
+    Eigen::Vector3d p;
+    double decrement;
+    if (dim == 3) {
+      detail::Psd3 solver;
+      solver.factorize(S.H);
+      p = -solver.solve(S.g);
+      decrement = -S.g.dot(p);
+    } else {
+      // e is felt by no sliding foot (e.g. all at the static point): nothing to do.
+      const double ge = S.g.dot(e);
+      const double he = e.dot(S.H * e);
+      const bool felt = he > detail::kRankTol * S.H.trace();
+      p = felt ? Eigen::Vector3d(-(ge / he) * e) : Eigen::Vector3d::Zero();
+      decrement = felt ? ge * ge / he : 0.0;
+    }
+    // Certified only once the decrement is tiny (then finish()'s Newton point y + p is exact
+    // to ~1e-13, see kink_newton); near a sliding foot at rest the linearized dual is loose,
+    // the plain directions n_k (p = 0) are not.
+    if (!(decrement > 1e-3 * options_.tol * std::max(S.f, D0_))) {
+      return polish_bound(y, S, p, dim, n_static, dual) <= options_.tol ||
+             polish_bound(y, S, Eigen::Vector3d::Zero(), dim, n_static, dual) <= options_.tol;
+    }
+    if ((it >= 2 && decrement > 0.25 * prev) || it >= 8 ||
+        s.iterations >= options_.max_iterations) {
+      return false;  // not converging quadratically: a kink nearby, wrong static set
+    }
+    prev = decrement;
+    ++s.iterations;
+    if (!line_search<false>(y, p, -decrement, 0.0, it == 0 ? 30 : 2, it == 0 ? 0.0 : 0.5, S) ||
+        !(S.r2_min > 1e-28 * D0_ * D0_)) {
+      return false;  // damping needed after the first step: a kink nearby
+    }
+  }
+}
+
+/// The dual when two or more distinct static points fix y (no Newton step): unit directions
+/// for sliding feet, least-norm balancing forces for static ones, fitted into their disks.
+bool Solver::fixed_point_dual(const Eigen::Vector3d& y, const Sums& S,
+                              const detail::Psd3& static_solver, int n_static, Dual& dual) {
+  if (n_static > 2) {
+    fit_static_forces(static_solver, S.g, n_static);
+  } else {
+    const Eigen::Vector3d mu = -static_solver.solve(S.g);
+    for (int k = 0; k < frame_.legs(); ++k) {
+      if (state(k) == kStatic) {
+        frame_.work_2n.col(k) = B(k) * mu;
+      }
+    }
+    fit_static_forces(static_solver, S.g, n_static);
+  }
+  StaticDual st;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kStatic) {
+      const Eigen::Vector2d lam = frame_.work_2n.col(k);
+      st.lmax = std::max(st.lmax, lam.norm());
+      st.value += lam.dot(d(k));
+      st.force += B(k).transpose() * lam;
+      st.primal += residual(k, y).norm();
+    }
+  }
+  dual = Dual{false, 0.0, Eigen::Vector3d::Zero(), S.g + st.force};
+  return bound(S.f + st.primal, S.f - S.g.dot(y) + st.value, std::max(1.0, st.lmax), dual.h) <=
+         options_.tol;
+}
+
+/// Static feet at two or more distinct points balance the sliding ones (Σ_S B_kᵀλ_k = −g) with
+/// an undetermined internal force, so a balancing choice inside the disks must be searched.
+/// Two feet (work_2n = the least-norm choice): the internal force is a multiple t of the push
+/// along the line between them, each disk allows an interval of t, and the t nearest 0 in both
+/// is taken. More feet (work_2n = the smoothing path's λ, O(δ) from an optimal dual):
+/// alternating projections between the balance and the disks, at most 200 (rigid gaits only).
+void Solver::fit_static_forces(const detail::Psd3& static_solver, const Eigen::Vector3d& g,
+                               int n_static) {
+  auto lam = [this](int k) { return frame_.work_2n.col(k); };
+  double worst = 0.0;
+  int a = -1;
+  int b = -1;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kStatic) {
+      worst = std::max(worst, lam(k).squaredNorm());
+      (a < 0 ? a : b) = k;
+    }
+  }
+  if (n_static == 2 && worst <= 1.0) {
+    return;
+  }
+  worst = 2.0;  // several feet: always enforce the balance first
+  if (n_static == 2) {
+    // λ_a + t z_a, λ_b + t z_b with c_a W_a z_a = dq = −c_b W_b z_b, dq ∥ q_a − q_b.
+    const Eigen::Vector2d dq = frame_.q.col(a).head<2>() - frame_.q.col(b).head<2>();
+    const Eigen::Vector2d za = B(a).leftCols<2>().partialPivLu().solve(dq);
+    const Eigen::Vector2d zb = -B(b).leftCols<2>().partialPivLu().solve(dq);
+    double lo = -kInf;
+    double hi = kInf;
+    for (const auto& [k, z] : {std::pair{a, za}, std::pair{b, zb}}) {
+      const Eigen::Vector2d l0 = lam(k);
+      const double A = z.squaredNorm();
+      const double Bz = l0.dot(z);
+      const double disc = Bz * Bz - A * (l0.squaredNorm() - 1.0);
+      if (!(A > 0.0) || disc < 0.0) {
+        return;  // this disk cannot be reached: no feasible choice, the certificate will say
+      }
+      const double root = std::sqrt(disc);
+      lo = std::max(lo, (-Bz - root) / A);
+      hi = std::min(hi, (-Bz + root) / A);
+    }
+    if (lo <= hi) {
+      const double t = std::clamp(0.0, lo, hi);
+      lam(a) += t * za;
+      lam(b) += t * zb;
+    }
+    return;
+  }
+  for (int it = 0; it < 200 && worst > 1.0; ++it) {
+    // Project onto the disks (not before the first balance), then back onto the balance
+    // Σ_S B_kᵀλ_k = −g (least-norm correction).
+    Eigen::Vector3d imbalance = g;
+    for (int k = 0; k < frame_.legs(); ++k) {
+      if (state(k) == kStatic) {
+        const double n2 = lam(k).squaredNorm();
+        if (n2 > 1.0 && it > 0) {
+          lam(k) /= std::sqrt(n2);
+        }
+        imbalance += B(k).transpose() * lam(k);
+      }
+    }
+    const Eigen::Vector3d mu = static_solver.solve(imbalance);
+    worst = 0.0;
+    for (int k = 0; k < frame_.legs(); ++k) {
+      if (state(k) == kStatic) {
+        lam(k) -= B(k) * mu;
+        worst = std::max(worst, lam(k).squaredNorm());
+      }
+    }
+    worst = worst > 1.0 + 1e-14 ? worst : 0.0;
+  }
+}
+
+}  // namespace slipwalk::friction::coulomb

@@ -1,0 +1,333 @@
+#pragma once
+// Internal to friction/: the Coulomb solver (friction::solve_coulomb). The algorithm, the dual
+// and the certificate are described in coulomb.cpp (the fast path, the answer) and
+// coulomb_path.cpp (the smoothing path and its active-set polish, the fallback); this header
+// holds what both share: the per-foot rows, the passes over the feet and the solver's state.
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "friction/balance.hpp"
+#include "friction/solvers.hpp"
+
+namespace slipwalk::friction::coulomb {
+
+inline constexpr double kEps = std::numeric_limits<double>::epsilon();
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+inline constexpr double kBig = 1e300;  // ‖r‖² of a foot a pass does not visit, for the minimum
+inline constexpr int kSlip = 0;
+inline constexpr int kStatic = 1;
+inline constexpr int kInactive = -1;
+
+/// The sums of one pass over the feet at a point y with smoothing δ (δ = 0: the exact D).
+struct Sums {
+  double f = 0.0;                               ///< Σ ρ_k, ρ_k = √(‖r_k‖² + δ²)
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();  ///< gradient Σ B_kᵀ r_k/ρ_k
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();  ///< Hessian Σ B_kᵀ (δ² I + r⊥r⊥ᵀ) B_k/ρ_k³
+  double inv_rho = 0.0;                         ///< Σ 1/ρ_k (value of the smoothing dual)
+  double rho_max = 0.0;                         ///< max ρ_k
+  double r2_min = kInf;                         ///< min ‖r_k‖²
+};
+
+/// A dual candidate, as finish() builds it: the smoothing path's λ_k = r_k/ρ_k (δ² = d2) for
+/// every foot, or the linearized λ_k = n_k + n_k⊥ (t_kᵀp)/‖r_k‖ for sliding feet and work_2n for
+/// static ones and the kink foot; h = Σ B_kᵀλ_k, its imbalance, known from the pass that
+/// assembled it.
+struct Dual {
+  bool path = false;
+  double d2 = 0.0;
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  Eigen::Vector3d h = Eigen::Vector3d::Zero();
+  int kink = -1;  ///< a foot whose λ is in work_2n whatever its state (kink_newton)
+};
+
+/// The minimizer of the kink model m(p) = gᵀp + ½ pᵀHp + ‖r + Bp‖ (kink_step()).
+struct KinkStep {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();    ///< the step
+  Eigen::Vector2d lam = Eigen::Vector2d::Zero();  ///< the kink foot's dual at the minimizer
+  bool stick = false;                             ///< r + Bp = 0: the foot does not slip there
+  double decrease = 0.0;                          ///< m(0) − m(p)
+};
+
+/// What the static feet of a polish contribute to its dual (static_duals()).
+struct StaticDual {
+  double lmax = 0.0;                                ///< max ‖λ_s‖
+  double value = 0.0;                               ///< Σ λ_sᵀ d_s
+  double primal = 0.0;                              ///< Σ ‖r_s(y)‖ (0 up to rounding)
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< Σ B_sᵀ λ_s
+};
+
+/// What finish_pass() sums.
+struct FinishSums {
+  double primal = 0.0;                              ///< D(y)
+  double stepped = 0.0;                             ///< D(y + p): the answer unless higher
+  double value = 0.0;                               ///< Σ λ_kᵀd_k of the balanced candidate
+  double lmax2 = 0.0;                               ///< max ‖λ_k‖² of the balanced candidate
+  Eigen::Vector2d force = Eigen::Vector2d::Zero();  ///< Σ F_k
+  double moment = 0.0;                              ///< Σ (q_k × F_k)_z
+  double q[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};     ///< upper part of Q = Σ t tᵀ/c_k, sliding
+};
+
+/// Minimizes gᵀp + ½ pᵀHp + ‖r + Bp‖ (the kink model of kink_newton; coulomb.cpp).
+bool kink_step(const Eigen::Vector3d& g, const Eigen::Matrix3d& H,
+               const Eigen::Matrix<double, 2, 3>& B, const Eigen::Vector2d& r, double nr,
+               KinkStep& out);
+
+/// Solves M x = b for a symmetric positive definite M (false unless it is; coulomb.cpp).
+bool solve_spd3(const Eigen::Matrix3d& M, const Eigen::Vector3d& b, double tol, Eigen::Vector3d& x);
+
+/// One solve: solve_coulomb() constructs it on the stack and calls run().
+class Solver {
+ public:
+  Solver(const contact::Robot& robot, contact::Frame& frame, const CoulombOptions& options)
+      : robot_(robot), frame_(frame), options_(options) {}
+
+  /// Writes frame.v_body, frame.Fxy and frame.friction (coulomb.cpp).
+  void run();
+
+ private:
+  // ---- per-foot constants (rows of frame.work_rows, one column per foot) ------------------
+  // Rows 0–5: B_k column-major (B₀₀ B₁₀ B₀₁ B₁₁ B₀₂ B₁₂), 6–7: d_k, 8: 1 for a foot with
+  // friction, 9: 1 for a sliding foot (the feet a polish pass visits), 10: ‖r_k‖² of the last
+  // pass, 11: c_k, 12: 1/c_k². An odd count of feet is padded with a zero column.
+  static constexpr int kActiveRow = 8;
+  static constexpr int kSlideRow = 9;
+  static constexpr int kR2Row = 10;
+  static constexpr int kWeightRow = 11;
+  static constexpr int kInvC2Row = 12;
+  [[nodiscard]] double at(int row, int k) const { return frame_.work_rows(row, k); }
+  [[nodiscard]] double weight(int k) const { return at(kWeightRow, k); }
+  [[nodiscard]] int state(int k) const { return frame_.work_idx[static_cast<std::size_t>(k)]; }
+  void set_state(int k, int st) {
+    frame_.work_idx[static_cast<std::size_t>(k)] = st;
+    frame_.work_rows(kSlideRow, k) = st == kSlip ? 1.0 : 0.0;
+  }
+  [[nodiscard]] Eigen::Matrix<double, 2, 3> B(int k) const {
+    Eigen::Matrix<double, 2, 3> Bk;
+    Bk << at(0, k), at(2, k), at(4, k), at(1, k), at(3, k), at(5, k);
+    return Bk;
+  }
+  [[nodiscard]] Eigen::Vector2d d(int k) const { return {at(6, k), at(7, k)}; }
+  [[nodiscard]] Eigen::Vector2d residual(int k, const Eigen::Vector3d& y) const {
+    return B(k) * y + d(k);
+  }
+
+  /// One pass: B_k = c W J̃_k, d_k = c W q̇_k, the states, the contact summary (balance.hpp's
+  /// prepare(), merged in) and the 3 × 3 constants: the viscous system M₁ = Σ B_kᵀB_k/c_k
+  /// (= Σ c J̃ᵀGJ̃ of balance.hpp), b₁ = Σ B_kᵀd_k/c_k, the dual metric M₂ = Σ B_kᵀB_k,
+  /// b₂ = Σ B_kᵀd_k and D(0) = Σ ‖d_k‖. The lever scale L is known only at the end, so the
+  /// lever column is built from S q (unscaled) and scaled afterwards, rows and sums alike.
+  void setup();
+
+  // ---- passes over the feet: two feet per step, Eigen::Array2d being one SSE2 register -----
+  // A foot a pass does not visit (mask 0) gets ρ ≥ 1 (finite) and the weight 0 in every sum.
+  // The row pointers are read once: the stores to row kR2Row would otherwise make the compiler
+  // reload them for every pair of feet.
+  using A2 = Eigen::Array2d;
+  struct Rows {
+    const double* b[8];  ///< B_k (6 rows) and d_k (2 rows)
+    const double* mask;
+    double* r2;
+    Eigen::Index cols;
+    [[nodiscard]] A2 at(int i, Eigen::Index j) const { return Eigen::Map<const A2>(b[i] + j); }
+  };
+  [[nodiscard]] Rows rows(int mask_row) {
+    auto& R = frame_.work_rows;
+    Rows out{};
+    for (int i = 0; i < 8; ++i) {
+      out.b[i] = R.row(i).data();
+    }
+    out.mask = R.row(mask_row).data();
+    out.r2 = R.row(kR2Row).data();
+    out.cols = R.cols();
+    return out;
+  }
+
+  /// Σ √(‖r_k(y)‖² + δ²) over the visited feet (kAll: all with friction, else the sliding ones).
+  template <bool kAll>
+  double value(const Eigen::Vector3d& y, double d2) {
+    const Rows R = rows(kAll ? kActiveRow : kSlideRow);
+    const double y0 = y(0), y1 = y(1), y2 = y(2);
+    A2 f = A2::Zero();
+    for (Eigen::Index j = 0; j < R.cols; j += 2) {
+      const A2 m = Eigen::Map<const A2>(R.mask + j);
+      const A2 r0 = R.at(0, j) * y0 + R.at(2, j) * y1 + R.at(4, j) * y2 + R.at(6, j);
+      const A2 r1 = R.at(1, j) * y0 + R.at(3, j) * y1 + R.at(5, j) * y2 + R.at(7, j);
+      f += m * (r0 * r0 + r1 * r1 + d2).sqrt();
+    }
+    return f.sum();
+  }
+
+  /// The Sums of D_δ over the visited feet at y (one pass, the solver's cost); leaves ‖r_k‖² of
+  /// every foot in row kR2Row. With δ = 0 the Hessian term is t_k t_kᵀ/‖r_k‖
+  /// (t_k = B_kᵀ n_k⊥); a visited foot with r_k = 0 then gives r2_min = 0 and a non-finite H,
+  /// which the caller rejects.
+  template <bool kAll>
+  void assemble(const Eigen::Vector3d& y, double d2, Sums& S) {
+    if (d2 > 0.0) {
+      assemble<kAll, true>(y, d2, S);
+    } else {
+      assemble<kAll, false>(y, 0.0, S);
+    }
+  }
+  template <bool kAll, bool kSmooth>
+  void assemble(const Eigen::Vector3d& y, double d2, Sums& S) {
+    const Rows R = rows(kAll ? kActiveRow : kSlideRow);
+    const double y0 = y(0), y1 = y(1), y2 = y(2);
+    A2 f = A2::Zero(), inv = A2::Zero(), rho_max = A2::Zero(), r2_min = A2::Constant(kInf);
+    A2 g0 = A2::Zero(), g1 = A2::Zero(), g2 = A2::Zero();
+    A2 h00 = A2::Zero(), h01 = A2::Zero(), h02 = A2::Zero();
+    A2 h11 = A2::Zero(), h12 = A2::Zero(), h22 = A2::Zero();
+    for (Eigen::Index j = 0; j < R.cols; j += 2) {
+      const A2 m = Eigen::Map<const A2>(R.mask + j);
+      const A2 b0 = R.at(0, j), b1 = R.at(1, j), b2 = R.at(2, j);
+      const A2 b3 = R.at(3, j), b4 = R.at(4, j), b5 = R.at(5, j);
+      const A2 r0 = b0 * y0 + b2 * y1 + b4 * y2 + R.at(6, j);
+      const A2 r1 = b1 * y0 + b3 * y1 + b5 * y2 + R.at(7, j);
+      const A2 rr = r0 * r0 + r1 * r1;
+      Eigen::Map<A2>(R.r2 + j) = rr;
+      const A2 rho = (rr + d2 + (1.0 - m)).sqrt();  // ρ_k, or ≥ 1 where m = 0 (1 − m is exact)
+      const A2 ir = m / rho;
+      f += m * rho;
+      if constexpr (kSmooth) {
+        inv += ir;
+        rho_max = rho_max.max(m * rho);
+      } else {
+        r2_min = r2_min.min(rr + (1.0 - m) * kBig);
+      }
+      // ∇ρ = Bᵀr/ρ;  ∇²ρ = Bᵀ(δ² I + r⊥r⊥ᵀ)B/ρ³ with v = Bᵀr⊥.
+      g0 += (b0 * r0 + b1 * r1) * ir;
+      g1 += (b2 * r0 + b3 * r1) * ir;
+      g2 += (b4 * r0 + b5 * r1) * ir;
+      const A2 v0 = b1 * r0 - b0 * r1;
+      const A2 v1 = b3 * r0 - b2 * r1;
+      const A2 v2 = b5 * r0 - b4 * r1;
+      const A2 w = ir * ir * ir;
+      const A2 wv0 = w * v0;
+      const A2 wv1 = w * v1;
+      h00 += wv0 * v0;
+      h01 += wv0 * v1;
+      h02 += wv0 * v2;
+      h11 += wv1 * v1;
+      h12 += wv1 * v2;
+      h22 += w * v2 * v2;
+      if constexpr (kSmooth) {
+        const A2 wd = w * d2;
+        h00 += wd * (b0 * b0 + b1 * b1);
+        h01 += wd * (b0 * b2 + b1 * b3);
+        h02 += wd * (b0 * b4 + b1 * b5);
+        h11 += wd * (b2 * b2 + b3 * b3);
+        h12 += wd * (b2 * b4 + b3 * b5);
+        h22 += wd * (b4 * b4 + b5 * b5);
+      }
+    }
+    S.f = f.sum();
+    S.inv_rho = inv.sum();
+    S.rho_max = rho_max.maxCoeff();
+    S.r2_min = r2_min.minCoeff();
+    S.g << g0.sum(), g1.sum(), g2.sum();
+    const double H00 = h00.sum(), H01 = h01.sum(), H02 = h02.sum();
+    const double H11 = h11.sum(), H12 = h12.sum(), H22 = h22.sum();
+    S.H << H00, H01, H02, H01, H11, H12, H02, H12, H22;
+  }
+
+  // ---- the fast path and the answer (coulomb.cpp) ----------------------------------------------
+  /// Newton's method on the exact D from y (S: its sums over every foot, all sliding), with the
+  /// foot nearest to rest — the one whose kink a quadratic model would step across — modelled
+  /// exactly (kink_step): the step makes it stick when its force fits in its disk, and slide
+  /// past its kink otherwise. Where the plain Newton step moves that foot's slip by less than
+  /// half of it, its quadratic model is good and the plain step is taken. At the optimum the
+  /// model is exact for that foot and Newton's quadratic convergence holds for the others (they
+  /// slide), so a frame with at most one static foot (the generic case) certifies in a few
+  /// steps. Points are certified with the model's dual (polish_bound's, plus the kink foot's λ)
+  /// once the model's predicted decrease is small enough for that to be possible. Returns false
+  /// (y moved downhill, states arbitrary) when the model degenerates or stops converging: the
+  /// smoothing path takes over.
+  bool kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual);
+  /// The relative gap of a dual candidate of value `value`, imbalance h and largest ‖λ_k‖ lmax,
+  /// against the primal `primal` (an upper bound of D(y) will do).
+  [[nodiscard]] double bound(double primal, double value, double lmax,
+                             const Eigen::Vector3d& h) const;
+  /// The pass of finish(), two feet per step like assemble(): λ_k of the candidate (kPath: the
+  /// smoothing path's r_k/ρ_k; else the linearized n_k + n_k⊥ (t_kᵀp)/‖r_k‖ for sliding feet,
+  /// work_2n for static ones and the kink foot), balanced (λ_k −= B_k μ) and written back to
+  /// work_2n, the forces F_k = −B_k,xy λ_k to Fxy (unscaled), and the sums.
+  template <bool kPath>
+  FinishSums finish_pass(const Eigen::Vector3d& y, const Dual& dual, const Eigen::Vector3d& mu);
+  /// The answer from a point y and a dual candidate: one pass (finish_pass) builds, balances and
+  /// writes the forces, which are then scaled into the disks; the reported velocity is the Newton
+  /// point y + p unless D is higher there, and the certificate is the candidate's exact gap.
+  void finish(Eigen::Vector3d y, const Dual& dual);
+  /// Whether D has a flat direction at the optimum (coulomb.cpp, non-uniqueness), given the sliding
+  /// feet's part of Q and the certified dual λ in work_2n.
+  bool flat_direction(Eigen::Matrix3d Q, int n_static) const;
+
+  // ---- the smoothing path and its polish (coulomb_path.cpp) ------------------------------------
+  /// The fallback: the smoothing path from y with polish attempts at the end of each stage; S
+  /// is scratch. Always finishes the solve.
+  void path(Eigen::Vector3d y, Sums& S, double Dref);
+  /// Armijo line search along p from y (Sums S at y), folded into the passes: the pass at the
+  /// full step is also the next step's assembly; only a rejected step costs extra (value passes,
+  /// t halved at most `halvings` times, never below t_min). On success y and S move to the
+  /// accepted point; on failure they stay.
+  template <bool kAll>
+  bool line_search(Eigen::Vector3d& y, const Eigen::Vector3d& p, double slope, double d2,
+                   int halvings, double t_min, Sums& S);
+  /// The Newton step of the smoothing path. H is positive definite on the range of M₂ (whatever
+  /// δ: no rank threshold here, the directions of a foot near rest are legitimately stiff); its
+  /// null space (contacts at one point) is filled in so that the step has no component there.
+  [[nodiscard]] Eigen::Vector3d smoothing_step(const Sums& S) const;
+  /// The smoothing dual λ_k = r_k/ρ_k at y: Σ λᵀd = Σ ‖r‖²/ρ − yᵀg, ‖λ_k‖ ≤ √(1 − δ²/ρ_max²),
+  /// imbalance g; D(y) ≤ Σ ρ and max(D, D(0)) ≥ max(Σ ρ − N δ, D(0)).
+  [[nodiscard]] double path_bound(const Eigen::Vector3d& y, const Sums& S, double delta) const;
+  /// The polish dual at y with step p (Sums S of the sliding feet): Σ_slide B_kᵀλ_k = g + H p =
+  /// g', Σ_slide λ_kᵀd_k = Σ ‖r_k‖ − g'ᵀy (as n_k⊥ ⊥ r_k), ‖λ_k‖² = 1 + (t_kᵀp)²/‖r_k‖² ≤
+  /// 1 + pᵀHp/min ‖r‖; the static feet balance g' (static_duals, written to work_2n).
+  double polish_bound(const Eigen::Vector3d& y, const Sums& S, const Eigen::Vector3d& p, int dim,
+                      int n_static, Dual& dual);
+  /// Static feet at one point (dim 1) share the force that balances g' in proportion to c_k:
+  /// c_k W_k λ_k = −(c_k/Σ_S c) g'_xy, i.e. B_k,xy λ_k = −(c_k/Σ_S c) g'_xy; the moment about
+  /// their point is then balanced too when eᵀg' = 0 (the Newton equation along e). Writes λ_k to
+  /// work_2n.
+  StaticDual static_duals(const Eigen::Vector3d& y, const Eigen::Vector3d& gp);
+  void zero_static_duals();
+  // ---- the active set ---------------------------------------------------------------------------
+  /// Marks feet with ‖r_k‖ ≤ threshold static (from ‖r_k‖² in row kR2Row); returns how many.
+  int classify(double threshold);
+  /// A polish attempt at the end of a smoothing stage (‖r_k(y)‖² in row kR2Row): the feet with
+  /// ‖r_k‖ ≤ threshold are static, and the slowest other foot too if it is clearly apart (step 2
+  /// of coulomb_path.cpp).
+  bool try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual& dual);
+  /// Active-set polish from y (a point of the smoothing path at δ) with the static feet marked
+  /// in work_idx. On success (relative gap ≤ tol) y and `dual` are the certified pair (static
+  /// feet's λ in work_2n).
+  bool polish(Eigen::Vector3d& y, double delta, Dual& dual);
+  /// The dual when two or more distinct static points fix y (no Newton step): unit directions
+  /// for sliding feet, least-norm balancing forces for static ones, fitted into their disks.
+  bool fixed_point_dual(const Eigen::Vector3d& y, const Sums& S, const detail::Psd3& static_solver,
+                        int n_static, Dual& dual);
+  /// Static feet at two or more distinct points balance the sliding ones (Σ_S B_kᵀλ_k = −g) with
+  /// an undetermined internal force, so a balancing choice inside the disks must be searched.
+  /// Two feet (work_2n = the least-norm choice): the internal force is a multiple t of the push
+  /// along the line between them, each disk allows an interval of t, and the t nearest 0 in both
+  /// is taken. More feet (work_2n = the smoothing path's λ, O(δ) from an optimal dual):
+  /// alternating projections between the balance and the disks, at most 200 (rigid gaits only).
+  void fit_static_forces(const detail::Psd3& static_solver, const Eigen::Vector3d& g, int n_static);
+
+  const contact::Robot& robot_;
+  contact::Frame& frame_;
+  detail::Contacts cs_;  ///< filled by setup()
+  CoulombOptions options_;
+  detail::Psd3 dual_;     ///< M₂ = Σ B_kᵀB_k (least norm on its range)
+  detail::Psd3 viscous_;  ///< M₁, the viscous-Coulomb system
+  Eigen::Matrix3d M1_ = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d M2_ = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b1_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d b2_ = Eigen::Vector3d::Zero();
+  double D0_ = 0.0;
+  double c_static_ = 0.0;  ///< Σ c_k over the static feet of the current polish
+  double scale_ = 0.0;     ///< Σ c_k √(1 + ‖w_k‖²): the size of the cancelling forces
+};
+
+}  // namespace slipwalk::friction::coulomb
