@@ -4,30 +4,13 @@
 // allocation per step.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 #include <numbers>
 #include <vector>
 
 #include "connection/trajectory.hpp"
 #include "core/error.hpp"
-
-// Counts heap allocations, to check that a step allocates nothing.
-namespace {
-std::atomic<long long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "support/count_allocations.hpp"
 
 namespace slipwalk::connection {
 namespace {
@@ -295,7 +278,7 @@ long long allocations_between_steps(const Law& law, Filter filter) {
   std::vector<long long> counts;
   counts.reserve(200);
   integrate(robot, paired_feet(0.4), options, law, filter, data, [&](const TrajectoryStep&) {
-    counts.push_back(g_allocations.load(std::memory_order_relaxed));
+    counts.push_back(slipwalk::testing::allocation_count());
   });
   return counts.back() - counts.front();
 }
@@ -305,11 +288,11 @@ TEST(Trajectory, StepsDoNotAllocate) {
   EXPECT_EQ(allocations_between_steps(ViscousCoulombKernel{}, IirFilter{}), 0);
   EXPECT_EQ(allocations_between_steps(CoulombKernel{}, IirFilter{}), 0);
   // The counter works: a run that copies frames allocates.
-  const long long before = g_allocations.load();
+  const long long before = slipwalk::testing::allocation_count();
   TrajectoryOptions options;
   options.steps = 3;
   run(paired_feet(0.0), options, ViscousCoulombKernel{}, NoFilter{});
-  EXPECT_GT(g_allocations.load(), before);
+  EXPECT_GT(slipwalk::testing::allocation_count(), before);
 }
 
 TEST(Trajectory, BadOptionsAreInputErrors) {

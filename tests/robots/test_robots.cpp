@@ -4,11 +4,8 @@
 // pairs; quadruped: stance lines, diagonal pairs and mirror symmetry; disk: rim geometry).
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <functional>
-#include <new>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -17,25 +14,7 @@
 #include "core/error.hpp"
 #include "robots/multipod.hpp"
 #include "robots/robots.hpp"
-
-// Counts heap allocations, to check that the gait callables allocate nothing.
-namespace {
-std::atomic<long long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-// GCC 12 flags free() of what it takes for the built-in operator new once it inlines these.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
+#include "support/count_allocations.hpp"
 
 namespace slipwalk::robots {
 namespace {
@@ -133,17 +112,17 @@ TEST(Walkers, CallablesDoNotAllocate) {
     const int n = w.legs();
     Eigen::Matrix3Xd q(3, n), qd(3, n);
     Eigen::VectorXd p(n);
-    const long long before = g_allocations.load();
+    const long long before = slipwalk::testing::allocation_count();
     for (int k = 0; k < 100; ++k) {
       w.feet(0.013 * k, q, qd);
       w.phase(0.013 * k, p);
     }
-    EXPECT_EQ(g_allocations.load(), before);
+    EXPECT_EQ(slipwalk::testing::allocation_count(), before);
   }
   // The counter works.
-  const long long before = g_allocations.load();
+  const long long before = slipwalk::testing::allocation_count();
   const Walker copy = multipod();
-  EXPECT_GT(g_allocations.load(), before);
+  EXPECT_GT(slipwalk::testing::allocation_count(), before);
 }
 
 // ---- option validation ------------------------------------------------------------------------
