@@ -29,7 +29,7 @@
 //  1. Start at the viscous-Coulomb solution (if nothing slips there, certify that at once).
 //  2. Fast path (kink_newton): Newton's method on the exact D, in which the foot nearest to rest
 //     (slowest in slip speed ‖r_k‖/c_k) is modelled exactly, kink included, whenever the plain
-//     Newton step would change its slip by more than half: the step minimizes the quadratic
+//     Newton step would change its slip by more than its size: the step minimizes the quadratic
 //     model of the others plus ‖r_s + B_s p‖ (kink_step), which makes the foot stick if its
 //     force fits in its friction disk and slide past its kink otherwise. A frame with at most
 //     one static foot — the generic case — thus converges quadratically, in 3–5 steps. The
@@ -216,14 +216,19 @@ void Solver::run() {
   path(y, S, Dref);
 }
 
-/// One pass: B_k = c W J̃_k, d_k = c W q̇_k, the states, the contact summary (balance.hpp's
-/// prepare(), merged in) and the 3 × 3 constants: the viscous system M₁ = Σ B_kᵀB_k/c_k
-/// (= Σ c J̃ᵀGJ̃ of balance.hpp), b₁ = Σ B_kᵀd_k/c_k, the dual metric M₂ = Σ B_kᵀB_k,
-/// b₂ = Σ B_kᵀd_k and D(0) = Σ ‖d_k‖. The lever scale L is known only at the end, so the
-/// lever column is built from S q (unscaled) and scaled afterwards, rows and sums alike.
 void Solver::setup() {
+  // Raw row pointers: Eigen's row and block expressions cost more than the arithmetic here.
   auto& R = frame_.work_rows;
-  R.rightCols(R.cols() - frame_.legs()).setZero();
+  double* row[13];
+  for (int i = 0; i < 13; ++i) {
+    row[i] = R.row(i).data();
+  }
+  const int n = frame_.legs();
+  if (R.cols() > n) {  // the padding column of an odd count of feet: no foot, mask 0
+    for (double* r : row) {
+      r[n] = 0.0;
+    }
+  }
   double L2 = 0.0;
   // Upper triangles of M₁, M₂ (00 01 02 11 12 22) and b₁, b₂.
   double m1[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
@@ -231,16 +236,16 @@ void Solver::setup() {
   double v1[3] = {0.0, 0.0, 0.0};
   double v2[3] = {0.0, 0.0, 0.0};
   // Local sums (members and the rows are both double: a store to a row could alias them).
-  double D0 = 0.0;
   double scale = 0.0;
   double c_sum = 0.0;
   int active = 0;
   bool aniso = false;
-  for (int k = 0; k < frame_.legs(); ++k) {
+  for (int k = 0; k < n; ++k) {
     const double c = detail::friction_weight(robot_, frame_, k);
-    frame_.Fxy.col(k).setZero();
     if (c == 0.0) {
-      R.col(k).setZero();
+      for (double* r : row) {
+        r[k] = 0.0;
+      }
       frame_.work_idx[static_cast<std::size_t>(k)] = kInactive;
       continue;
     }
@@ -253,31 +258,40 @@ void Solver::setup() {
     double w00 = c;
     double w01 = 0.0;
     double w11 = c;
-    const auto w = robot_.w.col(k);
-    const double ww = w.squaredNorm();
+    const double wx = robot_.w(0, k);
+    const double wy = robot_.w(1, k);
+    const double ww = wx * wx + wy * wy;
+    double cw = c;  // c ‖W‖², the balance's force scale
     if (ww > 0.0) {
       aniso = true;
-      const double al = c / (1.0 + std::sqrt(1.0 + ww));  // c α of W = I + α w wᵀ
-      w00 += al * w(0) * w(0);
-      w01 = al * w(0) * w(1);
-      w11 += al * w(1) * w(1);
+      const double root = std::sqrt(1.0 + ww);
+      const double al = c / (1.0 + root);  // c α of W = I + α w wᵀ
+      w00 += al * wx * wx;
+      w01 = al * wx * wy;
+      w11 += al * wy * wy;
+      cw = c * root;
     }
+    scale += cw;
     const double b4 = -w00 * qy + w01 * qx;
     const double b5 = -w01 * qy + w11 * qx;
     const double d0 = w00 * frame_.qdot(0, k) + w01 * frame_.qdot(1, k);
     const double d1 = w01 * frame_.qdot(0, k) + w11 * frame_.qdot(1, k);
-    const double col[8] = {w00, w01, w01, w11, b4, b5, d0, d1};
-    for (int i = 0; i < 8; ++i) {
-      R(i, k) = col[i];
-    }
-    R(kActiveRow, k) = 1.0;
-    scale += ww > 0.0 ? c * std::sqrt(1.0 + ww) : c;  // c ‖W‖², the balance's force scale
     // Divisions and square roots share one slow unit: one per foot here, D(0)'s norms below
     // two feet at a time.
     const double ic = 1.0 / c;
-    R(kWeightRow, k) = c;
-    R(kInvC2Row, k) = ic * ic;
-    set_state(k, kSlip);
+    row[0][k] = w00;
+    row[1][k] = w01;
+    row[2][k] = w01;
+    row[3][k] = w11;
+    row[4][k] = b4;
+    row[5][k] = b5;
+    row[6][k] = d0;
+    row[7][k] = d1;
+    row[kActiveRow][k] = 1.0;
+    row[kSlideRow][k] = 1.0;
+    row[kWeightRow][k] = c;
+    row[kInvC2Row][k] = ic * ic;
+    frame_.work_idx[static_cast<std::size_t>(k)] = kSlip;
     // BᵀB and Bᵀd for B = [cW | cW S q]; M₁ takes them over c.
     const double bb[6] = {w00 * w00 + w01 * w01, w00 * w01 + w01 * w11, w00 * b4 + w01 * b5,
                           w01 * w01 + w11 * w11, w01 * b4 + w11 * b5,   b4 * b4 + b5 * b5};
@@ -291,23 +305,25 @@ void Solver::setup() {
       v1[i] += bd[i] * ic;
     }
   }
-  for (Eigen::Index j = 0; j < R.cols(); j += 2) {
-    const A2 d0 = Eigen::Map<const A2>(R.row(6).data() + j);
-    const A2 d1 = Eigen::Map<const A2>(R.row(7).data() + j);
-    D0 += (d0 * d0 + d1 * d1).sqrt().sum();
-  }
-  D0_ = D0;
-  scale_ = scale;
   cs_ = detail::Contacts{};
   cs_.active = active;
   cs_.c_sum = c_sum;
   cs_.anisotropic = aniso;
   cs_.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
   cs_.inv_L = 1.0 / cs_.L;
-  // The lever column over L: rows 4–5 of B, row/column 2 of M (twice for the corner), b(2).
+  // D(0) = Σ ‖d_k‖ two feet at a time, and the lever column over L: rows 4–5 of B, row and
+  // column 2 of M (twice for the corner), b(2).
   const double il = cs_.inv_L;
-  R.row(4) *= il;
-  R.row(5) *= il;
+  A2 D0 = A2::Zero();
+  for (Eigen::Index j = 0; j < R.cols(); j += 2) {
+    const A2 d0 = Eigen::Map<const A2>(row[6] + j);
+    const A2 d1 = Eigen::Map<const A2>(row[7] + j);
+    D0 += (d0 * d0 + d1 * d1).sqrt();
+    Eigen::Map<A2>(row[4] + j) *= il;
+    Eigen::Map<A2>(row[5] + j) *= il;
+  }
+  D0_ = D0.sum();
+  scale_ = scale;
   auto fill = [il](const double* m, const double* v, Eigen::Matrix3d& M, Eigen::Vector3d& b) {
     M << m[0], m[1], m[2] * il, m[1], m[3], m[4] * il, m[2] * il, m[4] * il, m[5] * il * il;
     b << v[0], v[1], v[2] * il;
@@ -318,17 +334,6 @@ void Solver::setup() {
 }
 
 // ---- the fast path --------------------------------------------------------------------------
-/// Newton's method on the exact D from y (S: its sums over every foot, all sliding), with the
-/// foot nearest to rest — the one whose kink a quadratic model would step across — modelled
-/// exactly (kink_step): the step makes it stick when its force fits in its disk, and slide
-/// past its kink otherwise. Where the plain Newton step moves that foot's slip by less than
-/// half of it, its quadratic model is good and the plain step is taken. At the optimum the
-/// model is exact for that foot and Newton's quadratic convergence holds for the others (they
-/// slide), so a frame with at most one static foot (the generic case) certifies in a few
-/// steps. Points are certified with the model's dual (polish_bound's, plus the kink foot's λ)
-/// once the model's predicted decrease is small enough for that to be possible. Returns false
-/// (y moved downhill, states arbitrary) when the model degenerates or stops converging: the
-/// smoothing path takes over.
 bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
   auto& s = frame_.friction;
   int held = -1;  // the foot held static: y lies on its line r_held(y) = 0
@@ -358,7 +363,7 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
       st.decrease = -0.5 * g.dot(st.p);
       newton_ok = st.decrease > 0.0;
     }
-    if (!newton_ok || (Bk * st.p).squaredNorm() > 0.25 * nr * nr) {
+    if (!newton_ok || (Bk * st.p).squaredNorm() > nr * nr) {
       const KinkStep plain = st;
       if (held < 0) {  // take the kink foot's quadratic model out of the sums
         const double inr = 1.0 / nr;
@@ -458,8 +463,6 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
 }
 
 // ---- certificates without a pass (see Dual in the header) ---------------------------------
-/// The relative gap of a dual candidate of value `value`, imbalance h and largest ‖λ_k‖ lmax,
-/// against the primal `primal` (an upper bound of D(y) will do).
 double Solver::bound(double primal, double value, double lmax, const Eigen::Vector3d& h) const {
   const Eigen::Vector3d mu = dual_.solve(h);
   const double shrink = 1.0 / std::max(1.0, lmax + std::sqrt(std::max(mu.dot(h), 0.0)));
@@ -468,10 +471,6 @@ double Solver::bound(double primal, double value, double lmax, const Eigen::Vect
   return denom > 0.0 ? std::max(primal - dual, 0.0) / denom : 0.0;
 }
 
-/// The pass of finish(), two feet per step like assemble(): λ_k of the candidate (kPath: the
-/// smoothing path's r_k/ρ_k; else the linearized n_k + n_k⊥ (t_kᵀp)/‖r_k‖ for sliding feet,
-/// work_2n for static ones and the kink foot), balanced (λ_k −= B_k μ) and written back to
-/// work_2n, the forces F_k = −B_k,xy λ_k to Fxy (unscaled), and the sums.
 template <bool kPath>
 FinishSums Solver::finish_pass(const Eigen::Vector3d& y, const Dual& dual,
                                const Eigen::Vector3d& mu) {
@@ -631,8 +630,6 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
   }
 }
 
-/// Whether D has a flat direction at the optimum (see the header comment), given the sliding
-/// feet's part of Q and the certified dual λ in work_2n.
 bool Solver::flat_direction(Eigen::Matrix3d Q, int n_static) const {
   if (n_static > 0) {
     for (int k = 0; k < frame_.legs(); ++k) {

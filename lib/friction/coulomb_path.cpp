@@ -91,10 +91,6 @@ void Solver::path(Eigen::Vector3d y, Sums& S, double Dref) {
   finish(y, Dual{true, delta * delta, Eigen::Vector3d::Zero(), S.g});
 }
 
-/// Armijo line search along p from y (Sums S at y), folded into the passes: the pass at the
-/// full step is also the next step's assembly; only a rejected step costs extra (value passes,
-/// t halved at most `halvings` times, never below t_min). On success y and S move to the
-/// accepted point; on failure they stay.
 template <bool kAll>
 bool Solver::line_search(Eigen::Vector3d& y, const Eigen::Vector3d& p, double slope, double d2,
                          int halvings, double t_min, Sums& S) {
@@ -118,9 +114,6 @@ bool Solver::line_search(Eigen::Vector3d& y, const Eigen::Vector3d& p, double sl
   return false;
 }
 
-/// The Newton step of the smoothing path. H is positive definite on the range of M₂ (whatever
-/// δ: no rank threshold here, the directions of a foot near rest are legitimately stiff); its
-/// null space (contacts at one point) is filled in so that the step has no component there.
 Eigen::Vector3d Solver::smoothing_step(const Sums& S) const {
   Eigen::Matrix3d H = S.H;
   dual_.add_null_space(H, H.trace());
@@ -131,8 +124,6 @@ Eigen::Vector3d Solver::smoothing_step(const Sums& S) const {
   return -solver.solve(S.g);
 }
 
-/// The smoothing dual λ_k = r_k/ρ_k at y: Σ λᵀd = Σ ‖r‖²/ρ − yᵀg, ‖λ_k‖ ≤ √(1 − δ²/ρ_max²),
-/// imbalance g; D(y) ≤ Σ ρ and max(D, D(0)) ≥ max(Σ ρ − N δ, D(0)).
 double Solver::path_bound(const Eigen::Vector3d& y, const Sums& S, double delta) const {
   const double d2 = delta * delta;
   const double value = S.f - d2 * S.inv_rho - y.dot(S.g);
@@ -143,9 +134,6 @@ double Solver::path_bound(const Eigen::Vector3d& y, const Sums& S, double delta)
   return gap * denom / std::max(std::max(lower, D0_), kEps * denom);
 }
 
-/// The polish dual at y with step p (Sums S of the sliding feet): Σ_slide B_kᵀλ_k = g + H p =
-/// g', Σ_slide λ_kᵀd_k = Σ ‖r_k‖ − g'ᵀy (as n_k⊥ ⊥ r_k), ‖λ_k‖² = 1 + (t_kᵀp)²/‖r_k‖² ≤
-/// 1 + pᵀHp/min ‖r‖; the static feet balance g' (static_duals, written to work_2n).
 double Solver::polish_bound(const Eigen::Vector3d& y, const Sums& S, const Eigen::Vector3d& p,
                             int dim, int n_static, Dual& dual) {
   const Eigen::Vector3d gp = S.g + S.H * p;
@@ -160,10 +148,6 @@ double Solver::polish_bound(const Eigen::Vector3d& y, const Sums& S, const Eigen
   return bound(S.f + st.primal, S.f - gp.dot(y) + st.value, lmax, dual.h);
 }
 
-/// Static feet at one point (dim 1) share the force that balances g' in proportion to c_k:
-/// c_k W_k λ_k = −(c_k/Σ_S c) g'_xy, i.e. B_k,xy λ_k = −(c_k/Σ_S c) g'_xy; the moment about
-/// their point is then balanced too when eᵀg' = 0 (the Newton equation along e). Writes λ_k to
-/// work_2n.
 StaticDual Solver::static_duals(const Eigen::Vector3d& y, const Eigen::Vector3d& gp) {
   StaticDual st;
   for (int k = 0; k < frame_.legs(); ++k) {
@@ -191,7 +175,6 @@ void Solver::zero_static_duals() {
 }
 
 // ---- the active set ---------------------------------------------------------------------------
-/// Marks feet with ‖r_k‖ ≤ threshold static (from ‖r_k‖² in row kR2Row); returns how many.
 int Solver::classify(double threshold) {
   const double t2 = threshold * threshold;
   int n = 0;
@@ -206,9 +189,6 @@ int Solver::classify(double threshold) {
   return n;
 }
 
-/// A polish attempt at the end of a smoothing stage (‖r_k(y)‖² in row kR2Row): the feet with
-/// ‖r_k‖ ≤ threshold are static, and the slowest other foot too if it is clearly apart (step 3
-/// of the header).
 bool Solver::try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual& dual) {
   const double t2 = threshold * threshold;
   // Classify, and find the three slowest sliding feet: k1, k2 with ‖r‖² = r1 ≤ r2 ≤ r3.
@@ -250,9 +230,6 @@ bool Solver::try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual
   return polish(y, delta, dual);
 }
 
-/// Active-set polish from y (a point of the smoothing path at δ) with the static feet marked
-/// in work_idx. On success (relative gap ≤ tol) y and `dual` are the certified pair (static
-/// feet's λ in work_2n).
 bool Solver::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
   auto& s = frame_.friction;
   // ---- where the static feet do not slip: all of R³, a line or a point --------------------
@@ -363,8 +340,6 @@ bool Solver::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
   }
 }
 
-/// The dual when two or more distinct static points fix y (no Newton step): unit directions
-/// for sliding feet, least-norm balancing forces for static ones, fitted into their disks.
 bool Solver::fixed_point_dual(const Eigen::Vector3d& y, const Sums& S,
                               const detail::Psd3& static_solver, int n_static, Dual& dual) {
   if (n_static > 2) {
@@ -393,12 +368,6 @@ bool Solver::fixed_point_dual(const Eigen::Vector3d& y, const Sums& S,
          options_.tol;
 }
 
-/// Static feet at two or more distinct points balance the sliding ones (Σ_S B_kᵀλ_k = −g) with
-/// an undetermined internal force, so a balancing choice inside the disks must be searched.
-/// Two feet (work_2n = the least-norm choice): the internal force is a multiple t of the push
-/// along the line between them, each disk allows an interval of t, and the t nearest 0 in both
-/// is taken. More feet (work_2n = the smoothing path's λ, O(δ) from an optimal dual):
-/// alternating projections between the balance and the disks, at most 200 (rigid gaits only).
 void Solver::fit_static_forces(const detail::Psd3& static_solver, const Eigen::Vector3d& g,
                                int n_static) {
   auto lam = [this](int k) { return frame_.work_2n.col(k); };

@@ -237,12 +237,12 @@ class Solver {
   /// foot nearest to rest — the one whose kink a quadratic model would step across — modelled
   /// exactly (kink_step): the step makes it stick when its force fits in its disk, and slide
   /// past its kink otherwise. Where the plain Newton step moves that foot's slip by less than
-  /// half of it, its quadratic model is good and the plain step is taken. At the optimum the
-  /// model is exact for that foot and Newton's quadratic convergence holds for the others (they
-  /// slide), so a frame with at most one static foot (the generic case) certifies in a few
-  /// steps. Points are certified with the model's dual (polish_bound's, plus the kink foot's λ)
-  /// once the model's predicted decrease is small enough for that to be possible. Returns false
-  /// (y moved downhill, states arbitrary) when the model degenerates or stops converging: the
+  /// its size (it cannot reach the kink), its quadratic model serves and the plain step is taken.
+  /// At the optimum the model is exact for that foot and Newton's quadratic convergence holds for
+  /// the others (they slide), so a frame with at most one static foot (the generic case) certifies
+  /// in a few steps. Points are certified with the model's dual (polish_bound's, plus the kink
+  /// foot's λ) once the predicted decrease is below 1e-3 tol D (coulomb.cpp, step 2). Returns
+  /// false (y moved downhill, states arbitrary) when the model degenerates or stops converging: the
   /// smoothing path takes over.
   bool kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual);
   /// The relative gap of a dual candidate of value `value`, imbalance h and largest ‖λ_k‖ lmax,
