@@ -72,12 +72,15 @@ void check_frame(const Robot& robot, const Frame& frame) {
     throw core::InputError("q", "has " + std::to_string(frame.q.cols()) + " feet, the robot " +
                                     std::to_string(n) + " legs");
   }
-  for (int j = 0; j < n; ++j) {
-    if (!frame.q.col(j).allFinite()) {
-      throw core::InputError(at("q", j), "must be finite");
-    }
-    if (!frame.qdot.col(j).allFinite()) {
-      throw core::InputError(at("qdot", j), "must be finite");
+  // One vectorized test for the usual case; the loop only to name the culprit.
+  if (!frame.q.allFinite() || !frame.qdot.allFinite()) {
+    for (int j = 0; j < n; ++j) {
+      if (!frame.q.col(j).allFinite()) {
+        throw core::InputError(at("q", j), "must be finite");
+      }
+      if (!frame.qdot.col(j).allFinite()) {
+        throw core::InputError(at("qdot", j), "must be finite");
+      }
     }
   }
   if (!std::isfinite(frame.theta)) {

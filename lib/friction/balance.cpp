@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 
 namespace slipwalk::friction::detail {
 
@@ -28,6 +29,53 @@ Contacts prepare(const contact::Robot& robot, contact::Frame& frame) {
       frame.work_n(k) = 1.0 / (1.0 + std::sqrt(1.0 + robot.w.col(k).squaredNorm()));
     }
   }
+  return out;
+}
+
+Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
+                         Eigen::Vector3d& b) {
+  // Scalars, not 2 × 2 temporaries: this loop is most of a viscous solve's per-foot cost.
+  Contacts out;
+  double L2 = 0.0;
+  double m00 = 0.0, m01 = 0.0, m02 = 0.0, m11 = 0.0, m12 = 0.0, m22 = 0.0;
+  double b0 = 0.0, b1 = 0.0, b2 = 0.0;
+  for (int k = 0; k < frame.legs(); ++k) {
+    const double c = friction_weight(robot, frame, k);
+    frame.work_n(k) = c;
+    if (c == 0.0) {
+      continue;
+    }
+    ++out.active;
+    out.c_sum += c;
+    const double qx = frame.q(0, k);
+    const double qy = frame.q(1, k);
+    L2 = std::max(L2, qx * qx + qy * qy);
+    // c G = c (I + w wᵀ), the unscaled lever s = S q = (−q_y, q_x), and c G s, c G q̇.
+    const double w0 = robot.w(0, k);
+    const double w1 = robot.w(1, k);
+    out.anisotropic = out.anisotropic || w0 != 0.0 || w1 != 0.0;
+    const double g00 = c * (1.0 + w0 * w0);
+    const double g01 = c * w0 * w1;
+    const double g11 = c * (1.0 + w1 * w1);
+    const double gs0 = -g00 * qy + g01 * qx;
+    const double gs1 = -g01 * qy + g11 * qx;
+    const double gq0 = g00 * frame.qdot(0, k) + g01 * frame.qdot(1, k);
+    const double gq1 = g01 * frame.qdot(0, k) + g11 * frame.qdot(1, k);
+    m00 += g00;
+    m01 += g01;
+    m11 += g11;
+    m02 += gs0;
+    m12 += gs1;
+    m22 += -qy * gs0 + qx * gs1;
+    b0 += gq0;
+    b1 += gq1;
+    b2 += -qy * gq0 + qx * gq1;
+  }
+  out.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
+  out.inv_L = 1.0 / out.L;
+  const double il = out.inv_L;
+  M << m00, m01, m02 * il, m01, m11, m12 * il, m02 * il, m12 * il, m22 * il * il;
+  b << b0, b1, b2 * il;
   return out;
 }
 

@@ -185,6 +185,13 @@ void viscous_system(const contact::Robot& robot, const contact::Frame& frame, do
   }
 }
 
+/// prepare() and viscous_system() in one pass, for callers that need G only (not W): the contact
+/// summary, M̃ and b̃ (φ ≡ 1) in scaled coordinates, and c_k in frame.work_n (0 for a foot
+/// without friction). L is known only at the end of the pass, so the lever column is summed
+/// unscaled (S q) and scaled afterwards.
+Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
+                         Eigen::Vector3d& b);
+
 /// Writes v_body from scaled coordinates.
 inline void set_velocity(contact::Frame& frame, const Eigen::Vector3d& y, double L) {
   frame.v_body = Eigen::Vector3d(y(0), y(1), y(2) / L);

@@ -1,16 +1,24 @@
 // Cost per frame of the friction balance (§3.4) with contact and F_z given: viscous-Coulomb (issue
 // 5 target ≤ 1 µs for a hexapod), the local connection A, the ε-law and classical Coulomb to a
 // relative duality gap of 1e-9 (target ≤ 10 µs and ≤ 10× viscous), for 3…50 legs (target: ≤ ×2
-// from 3 to 50 legs). Robots as in thesis §3.5.3 / Fig. 3.13: a disk of radius 0.3 m with N legs
-// equally spaced on the rim; 256 random poses and velocities per N, all feet on the ground with
-// random loads, cycled through so that no branch is learnt. Compare the rows as ratios.
+// from 3 to 50 legs); and the whole frame (connection::evaluate: spring support, A, friction
+// law) and the spring support alone, the rows Fig. 3.13a times. Robots as in thesis §3.5.3 /
+// Fig. 3.13: a disk of radius 0.3 m with N legs equally spaced on the rim; 4096 random poses and
+// velocities per N, all feet on the ground with random loads (for the whole frame: random leg
+// heights, so that the support search works). Each is copied into one working frame before the
+// call (BM_CopyInputs times the copy alone): so many inputs that the branch predictor cannot
+// learn the sequence (with 256, a current CPU memorizes it for small N and a 12-leg spring
+// support looked twice as fast as it is), one frame so that they need not fit in the caches.
+// Compare the rows as ratios; the counter "legs" lets a script fit time = a + b N per row.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
 #include "connection/local_connection.hpp"
 #include "contact/robot.hpp"
+#include "contact/spring_support.hpp"
 #include "friction/solvers.hpp"
 
 namespace {
@@ -18,13 +26,32 @@ namespace {
 using slipwalk::contact::Frame;
 using slipwalk::contact::Robot;
 
-struct Pool {
-  Robot robot;
-  std::vector<Frame> frames;
+/// One frame's inputs.
+struct Inputs {
+  Eigen::Matrix3Xd q;
+  Eigen::Matrix3Xd qdot;
+  std::vector<char> contact;
+  Eigen::VectorXd Fz;
 };
 
+struct Pool {
+  Robot robot;
+  std::vector<Inputs> inputs;
+  Frame frame;  ///< the working frame
+  explicit Pool(Robot r) : robot(std::move(r)), frame(robot) {}
+  void load(std::size_t i) {
+    const Inputs& in = inputs[i];
+    frame.q = in.q;
+    frame.qdot = in.qdot;
+    frame.contact = in.contact;
+    frame.Fz = in.Fz;
+  }
+};
+
+constexpr int kInputs = 4096;
+
 Pool make_pool(int n, bool aniso = false) {
-  Pool p{slipwalk::contact::uniform_robot(n), {}};
+  Pool p(slipwalk::contact::uniform_robot(n));
   std::mt19937 rng(static_cast<unsigned>(1000 + n));
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   if (aniso) {
@@ -32,16 +59,16 @@ Pool make_pool(int n, bool aniso = false) {
       p.robot.w.col(k) << U(rng), U(rng);
     }
   }
-  for (int i = 0; i < 256; ++i) {
-    Frame f(p.robot);
+  for (int i = 0; i < kInputs; ++i) {
+    Inputs in{Eigen::Matrix3Xd(3, n), Eigen::Matrix3Xd(3, n),
+              std::vector<char>(static_cast<std::size_t>(n), 1), Eigen::VectorXd(n)};
     for (int k = 0; k < n; ++k) {
       const double a = 2.0 * M_PI * k / n;
-      f.q.col(k) << 0.3 * std::cos(a) + 0.05 * U(rng), 0.3 * std::sin(a) + 0.05 * U(rng), -0.1;
-      f.qdot.col(k) << 0.1 * U(rng), 0.1 * U(rng), 0.0;
-      f.contact[static_cast<std::size_t>(k)] = 1;
-      f.Fz(k) = (1.0 + 0.5 * U(rng)) / n;
+      in.q.col(k) << 0.3 * std::cos(a) + 0.05 * U(rng), 0.3 * std::sin(a) + 0.05 * U(rng), -0.1;
+      in.qdot.col(k) << 0.1 * U(rng), 0.1 * U(rng), 0.0;
+      in.Fz(k) = (1.0 + 0.5 * U(rng)) / n;
     }
-    p.frames.push_back(std::move(f));
+    p.inputs.push_back(std::move(in));
   }
   return p;
 }
@@ -52,21 +79,34 @@ void run(benchmark::State& state, Pool& pool, Solve solve) {
   double iterations = 0.0;
   double unique = 0.0;
   double certified = 0.0;
+  double changes = 0.0;
+  double contacts = 0.0;
   long long calls = 0;
+  Frame& f = pool.frame;
   for (auto _ : state) {
-    Frame& f = pool.frames[i];
-    i = (i + 1) % pool.frames.size();
+    pool.load(i);
+    i = (i + 1) % pool.inputs.size();
     solve(pool.robot, f);
     benchmark::DoNotOptimize(f.v_body.data());
     iterations += f.friction.iterations;
     unique += f.friction.unique ? 1.0 : 0.0;
     certified += f.friction.converged ? 1.0 : 0.0;
+    changes += f.support.iterations;
+    contacts += static_cast<double>(std::count(f.contact.begin(), f.contact.end(), 1));
     ++calls;
   }
   const double c = calls > 0 ? static_cast<double>(calls) : 1.0;
+  state.counters["legs"] = static_cast<double>(pool.robot.legs());
   state.counters["iters"] = iterations / c;
   state.counters["unique"] = unique / c;
   state.counters["ok"] = certified / c;
+  state.counters["changes"] = changes / c;    // contact changes of the support search
+  state.counters["contacts"] = contacts / c;  // feet on the ground
+}
+
+void BM_CopyInputs(benchmark::State& state) {
+  Pool pool = make_pool(static_cast<int>(state.range(0)));
+  run(state, pool, [](const Robot&, Frame&) {});
 }
 
 void BM_Viscous(benchmark::State& state) {
@@ -107,13 +147,51 @@ void BM_CoulombAnisotropic1e9(benchmark::State& state) {
       [&opt](const Robot& r, Frame& f) { slipwalk::friction::solve_coulomb(r, f, opt); });
 }
 
+/// The whole frame: leg heights vary by ±1 cm around −0.1 m (stiffness 1000 N/m, weight 10 N:
+/// compressions of about 10/(1000 N) m), so feet lift off and the support search has work.
+Pool make_model_pool(int n) {
+  Pool p = make_pool(n);
+  p.robot = slipwalk::contact::uniform_robot(n, 1000.0, 0.8, 10.0);
+  std::mt19937 rng(static_cast<unsigned>(2000 + n));
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (Inputs& in : p.inputs) {
+    for (int k = 0; k < n; ++k) {
+      in.q(2, k) = -0.1 + 0.01 * U(rng);
+    }
+  }
+  return p;
+}
+
+void BM_SpringSupport(benchmark::State& state) {
+  Pool pool = make_model_pool(static_cast<int>(state.range(0)));
+  run(state, pool, [](const Robot& r, Frame& f) { slipwalk::contact::spring_support(r, f); });
+}
+
+void BM_ModelViscous(benchmark::State& state) {
+  Pool pool = make_model_pool(static_cast<int>(state.range(0)));
+  run(state, pool, [](const Robot& r, Frame& f) {
+    slipwalk::connection::evaluate(r, f, slipwalk::connection::FrictionLaw::kViscousCoulomb);
+  });
+}
+
+void BM_ModelCoulomb(benchmark::State& state) {
+  Pool pool = make_model_pool(static_cast<int>(state.range(0)));
+  run(state, pool, [](const Robot& r, Frame& f) {
+    slipwalk::connection::evaluate(r, f, slipwalk::connection::FrictionLaw::kCoulomb);
+  });
+}
+
 #define LEGS Arg(3)->Arg(6)->Arg(12)->Arg(24)->Arg(50)
+BENCHMARK(BM_CopyInputs)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_Viscous)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ViscousAnisotropic)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_LocalConnection)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_Epsilon0_01)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_Coulomb1e9)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombAnisotropic1e9)->LEGS->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_SpringSupport)->LEGS->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_ModelViscous)->LEGS->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_ModelCoulomb)->LEGS->Unit(benchmark::kNanosecond);
 
 }  // namespace
 
