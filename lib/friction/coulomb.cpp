@@ -219,6 +219,11 @@ void Solver::run() {
 void Solver::setup() {
   // Raw row pointers: Eigen's row and block expressions cost more than the arithmetic here.
   auto& R = frame_.work_rows;
+  if (R.cols() != (frame_.legs() + 1) / 2 * 2) {  // a frame resized after construction
+    R.resize(Eigen::NoChange, (frame_.legs() + 1) / 2 * 2);
+    frame_.work_idx.resize(static_cast<std::size_t>(frame_.legs()));
+    frame_.work_2n.resize(Eigen::NoChange, frame_.legs());
+  }
   double* row[13];
   for (int i = 0; i < 13; ++i) {
     row[i] = R.row(i).data();
