@@ -20,6 +20,15 @@ namespace slipwalk::friction {
 /// w_k w_kᵀ); the balance is a 3×3 linear solve (exact).
 void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame);
 
+/// solve_viscous_coulomb with an external planar wrench on the body, `load` = (F_x, F_y, M_z) in
+/// the body frame (N, N, N m; M_z about the body origin), e.g. gravity's component along a slope
+/// (terrain/terrain.hpp): the balance Σ F_k + f = 0, Σ M_z,k + M_z = 0 is M x = f − b, so the
+/// body velocity is affine in q̇, v_body = A q̇ + M⁻¹ f (A of eq. 3.20 unchanged). With no foot
+/// carrying friction, or all contacts at one point and a moment they cannot feel, no balance
+/// exists: friction.converged = false and the message starts with "sliding".
+void solve_viscous_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
+                                  const Eigen::Vector3d& load);
+
 struct EpsilonOptions {
   double tol = 1e-12;  ///< stop after two Newton steps in a row change the scaled body velocity
                        ///< by less than tol · (‖v‖ + max ‖q̇_k‖), or when the balance holds to
@@ -56,5 +65,20 @@ struct CoulombOptions {
 /// Algorithm and tolerances: friction/coulomb.cpp.
 void solve_coulomb(const contact::Robot& robot, contact::Frame& frame,
                    const CoulombOptions& options = {});
+
+/// Coulomb friction with an external planar wrench `load` = (F_x, F_y, M_z) on the body (body
+/// frame, M_z about the origin; see solve_viscous_coulomb_loaded): minimizes the convex
+///   Φ(v) = Σ μ_k F_z,k ‖W_k u_k(v)‖ − fᵀ v
+/// (dissipation minus the load's power). Φ is bounded below iff f lies in the set of wrenches the
+/// friction ellipses can hold, {Σ J_kᵀ F_k : F_k in ellipse k}; otherwise there is no
+/// quasi-static balance and the robot slides: the solver returns v_body = 0, Fxy = 0,
+/// converged = false, a message starting with "sliding", and friction.certificate = the
+/// recession slope Σ μ_k F_z,k ‖W_k J_k d‖ − fᵀ d < 0 of a unit direction d that proves it.
+/// Otherwise as solve_coulomb: Fxy balance the load to rounding and lie in their ellipses, and
+/// certificate is the relative duality gap. A load of exactly zero is solve_coulomb itself; else
+/// the algorithm (smoothing path and polish, coulomb_loaded.cpp) is a plain reference, slower
+/// than solve_coulomb's fast path, used only where a load is present.
+void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
+                          const Eigen::Vector3d& load, const CoulombOptions& options = {});
 
 }  // namespace slipwalk::friction

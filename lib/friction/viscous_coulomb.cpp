@@ -7,14 +7,26 @@
 
 namespace slipwalk::friction {
 
-void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame) {
+namespace {
+
+/// The solve with (kLoaded) or without an external wrench f = (F_x, F_y, M_z) on the body: the
+/// balance Σ J_kᵀ F_k + f = 0 reads M x = f − b, so x = M⁻¹ f − M⁻¹ b: the same matrix and the
+/// same A as eq. 3.20, plus the constant M⁻¹ f (terrain/terrain.hpp derives f for a slope). The
+/// unloaded instantiation is the flat path, with no code for f.
+template <bool kLoaded>
+void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vector3d& load) {
   // ---- the 3 × 3 balance in scaled coordinates, least norm when singular --------------------
   Eigen::Matrix3d M;
   Eigen::Vector3d b;
   const detail::Contacts cs = detail::viscous_balance(robot, frame, M, b);  // c_k in work_n
   detail::Psd3 solver;
   solver.factorize(M);
-  const Eigen::Vector3d y = -solver.solve(b);
+  Eigen::Vector3d rhs = -b;
+  if constexpr (kLoaded) {
+    // Scaled coordinates y = (v, L ω): the moment row is divided by L like b's (balance.hpp).
+    rhs += Eigen::Vector3d(load(0), load(1), load(2) * cs.inv_L);
+  }
+  const Eigen::Vector3d y = solver.solve(rhs);
   detail::set_velocity(frame, y, cs.L);
 
   // ---- forces F_k = −c_k G_k u_k, dissipation, balance and the size of the cancelling terms --
@@ -52,6 +64,12 @@ void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame) {
   detail::BalanceSum sum;
   sum.force << fx, fy;
   sum.moment = mz;
+  if constexpr (kLoaded) {
+    // The load is one of the cancelling terms: Σ F_k + f = 0 and Σ M_k + M_f = 0.
+    sum.force += load.head<2>();
+    sum.moment += load(2);
+    scale += std::abs(load(0)) + std::abs(load(1)) + std::abs(load(2)) * cs.inv_L;
+  }
 
   auto& s = frame.friction;
   s.converged = true;
@@ -64,9 +82,36 @@ void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame) {
   s.message.clear();
   if (cs.active == 0) {
     s.message = "no foot with friction in contact: body velocity undetermined, set to 0";
+    if constexpr (kLoaded) {
+      // Nothing holds the load: there is no quasi-static balance (the body falls or slides).
+      if (load.squaredNorm() > 0.0) {
+        s.converged = false;
+        s.message = "sliding: no foot with friction in contact holds the external load";
+      }
+    }
   } else if (!s.unique) {
     s.message = "all contacts at one point: rotation about it undetermined (least-norm solution)";
+    if constexpr (kLoaded) {
+      // A load with a part the contacts cannot feel (a moment about their common point) is not
+      // balanced by any velocity.
+      const Eigen::Vector3d f(load(0), load(1), load(2) * cs.inv_L);
+      if ((solver.project_to_range(f) - f).norm() > 1e-12 * f.norm()) {
+        s.converged = false;
+        s.message = "sliding: the contacts (all at one point) cannot hold the external moment";
+      }
+    }
   }
+}
+
+}  // namespace
+
+void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame) {
+  solve<false>(robot, frame, Eigen::Vector3d::Zero());
+}
+
+void solve_viscous_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
+                                  const Eigen::Vector3d& load) {
+  solve<true>(robot, frame, load);
 }
 
 }  // namespace slipwalk::friction
