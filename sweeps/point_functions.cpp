@@ -416,6 +416,7 @@ const std::vector<PointFunction>& registry() {
     for (auto& f : peer_point_functions()) {
       v.push_back(std::move(f));
     }
+    v.push_back(peer_bigant_point_function());
     return v;
   }();
   return all;

@@ -39,6 +39,9 @@ struct PointFunction {
 [[nodiscard]] PointFunction legged_cost_point_function();
 /// The speed comparisons of §3.5.3, Fig. 3.13: MuJoCo peer and parallel steps (peer_points.cpp).
 [[nodiscard]] std::vector<PointFunction> peer_point_functions();
+/// The sim-to-sim accuracy comparison of §3.5.4, Fig. 3.14: BigANT in MuJoCo
+/// (peer_bigant_points.cpp).
+[[nodiscard]] PointFunction peer_bigant_point_function();
 
 /// nullptr if no point function has this name.
 [[nodiscard]] const PointFunction* find_point_function(std::string_view name);

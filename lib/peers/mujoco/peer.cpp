@@ -12,6 +12,7 @@
 #include <mutex>
 
 #include "core/error.hpp"
+#include "peers/mujoco/mjcf_loader.hpp"
 
 namespace slipwalk::peers::mujoco {
 
@@ -25,30 +26,30 @@ std::mutex& loader_mutex() {
 
 }  // namespace
 
+mjModel* load_mjcf(const std::string& xml, const char* name) {
+  const std::lock_guard<std::mutex> lock(loader_mutex());
+  // mjVFS holds 2000 file names of 1000 bytes: on the heap, not the stack.
+  const auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml.size())) != 0) {
+    throw core::ComputationError("MuJoCo: cannot create the in-memory MJCF file");
+  }
+  const int file = mj_findFileVFS(vfs.get(), name);
+  std::memcpy(vfs->filedata[file], xml.data(), xml.size());
+  char error[1000] = "";
+  mjModel* model = mj_loadXML(name, vfs.get(), error, sizeof(error));
+  mj_deleteVFS(vfs.get());
+  if (model == nullptr) {
+    throw core::ComputationError(std::string("MuJoCo could not compile ") + name + ": " + error);
+  }
+  return model;
+}
+
 // --- model and data
 // ---------------------------------------------------------------------------------
 
 PeerModel::PeerModel(PeerSpec spec) : spec_(std::move(spec)) {
-  const std::string xml = mjcf(spec_);
-  {
-    const std::lock_guard<std::mutex> lock(loader_mutex());
-    // mjVFS holds 2000 file names of 1000 bytes: on the heap, not the stack.
-    const auto vfs = std::make_unique<mjVFS>();
-    mj_defaultVFS(vfs.get());
-    const char* name = "slipwalk_peer.xml";
-    if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml.size())) != 0) {
-      throw core::ComputationError("MuJoCo: cannot create the in-memory MJCF file");
-    }
-    const int file = mj_findFileVFS(vfs.get(), name);
-    std::memcpy(vfs->filedata[file], xml.data(), xml.size());
-    char error[1000] = "";
-    model_ = mj_loadXML(name, vfs.get(), error, sizeof(error));
-    mj_deleteVFS(vfs.get());
-    if (model_ == nullptr) {
-      throw core::ComputationError(std::string("MuJoCo could not compile the peer model: ") +
-                                   error);
-    }
-  }
+  model_ = load_mjcf(mjcf(spec_), "slipwalk_peer.xml");
   const int n = legs();
   qpos_slide.resize(static_cast<std::size_t>(n));
   qvel_slide.resize(static_cast<std::size_t>(n));
