@@ -46,6 +46,10 @@ SCRIPTS.append("fig3_13")
 SCRIPT_STUDY["fig3_13"] = "ch3_peer"
 STUDIES.append("ch3_peer")
 WIDE.add("fig3_13")
+# §3.5.4, Fig. 3.14 (issue 7): BigANT sim to sim, ours against MuJoCo driven by the same feet.
+SCRIPTS.append("fig3_14")
+SCRIPT_STUDY["fig3_14"] = "ch3_peer"
+WIDE.add("fig3_14")
 # What the thesis leaves open in the dm model (lib/inchworm/mass_swap.hpp), stated on the page.
 DM_CHOICES = [
     "Stroke phase: Δm rides locked on one end mass (then \"M\", y); the stroke is exactly the "
