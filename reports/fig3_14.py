@@ -161,8 +161,8 @@ def main():
             values[f"{g}_mujoco_theta_end_deg"] = float(np.degrees(mj["theta"][-1]))
             gaps.append(gv)
             rows_html += [(g, "base", "—", final(mj), trk["rmse_xy_foot_max"])] + gait_rows
-            curves.append((mj, PEER, "-", 1.8, f"{values['peer']} (as measured): kp_xy 100, "
-                           "kp_z = K, stiff contact"))
+            curves.append((mj, PEER, "-", 1.8, f"{values['peer'].replace('mujoco', 'MuJoCo')} "
+                           "(as measured)"))
         for s, col, ls, lw, lab in curves:
             ax[i, 0].plot(s["t"], s["x"], color=col, ls=ls, lw=lw, label=lab)
             ax[i, 1].plot(s["t"], s["y"], color=col, ls=ls, lw=lw)
@@ -179,7 +179,7 @@ def main():
             ax[i, 3].text(0.5, 0.5, "MuJoCo not in this build\n(SLIPWALK_MUJOCO=OFF or "
                           "libmujoco-dev missing)", transform=ax[i, 3].transAxes, ha="center",
                           color="0.4")
-        ax[i, 0].legend(loc="upper left")
+        ax[i, 0].legend(loc="upper left", fontsize=7)
     if has_peer:
         values["tracking_xy_foot_max_cm"] = 100 * max(tr["rmse_xy_foot_max"] for tr in tracking)
         values["tracking_rmse_x_cm"] = 100 * max(tr["rmse_x"] for tr in tracking)

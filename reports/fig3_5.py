@@ -49,11 +49,15 @@ def main():
         ax.plot(r["x"], r["y"], color=color[key], lw=1.5, label=label[key])
         for i in (0, r.t.n // 2, r.t.n - 1):
             outline(ax, r["x"][i], r["y"][i], r["theta"][i], color[key])
+    mj = rb.mujoco_as_measured(args.data, "tripod")
+    if mj is not None:
+        ax.plot(mj["x"], mj["y"], color=rb.MEASURED, lw=1.5, label=rb.MEASURED_LABEL)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_title("Robot trajectory (outlines and + at start, half-way, end); the thesis adds "
-                 "motion capture")
+                 "motion capture" + ("; here MuJoCo driven by the same feet (Fig. 3.14)"
+                                     if mj is not None else ""))
     ax.legend(loc="best")
 
     roll, pitch = v.roll_pitch_deg()
@@ -67,6 +71,9 @@ def main():
         else:
             a.plot(t, yv, color=rb.VISCOUS, lw=1.2, label="viscous-Coulomb")
             a.plot(t, yk, color=rb.COULOMB, lw=1.2, ls="--", label="Coulomb")
+            if mj is not None:
+                a.plot(mj["t"], np.degrees(mj["theta"]), color=rb.MEASURED, lw=1.0,
+                       label=rb.MEASURED_LABEL)
         a.set_title(name)
         a.set_xlabel("t [s]")
         a.legend(fontsize=6.5)
@@ -78,6 +85,8 @@ def main():
         a = fig.add_subplot(gs[2, j])
         a.plot(t, scale * v[col], color=rb.VISCOUS, lw=1.0, label="viscous-Coulomb")
         a.plot(t, scale * k[col], color=rb.COULOMB, lw=1.0, ls="--", label="Coulomb")
+        if mj is not None:
+            a.plot(mj["t"], scale * mj[col], color=rb.MEASURED, lw=0.9, label=rb.MEASURED_LABEL)
         a.set_title(title)
         a.set_xlabel("t [s]")
         a.legend(fontsize=6.5)
@@ -109,6 +118,12 @@ def main():
         "support_same_for_both_laws": bool(np.allclose(v["alpha"], k["alpha"])
                                            and np.allclose(v["beta"], k["beta"])),
     })
+    values["mujoco_as_measured"] = mj is not None
+    if mj is not None:
+        end_m = np.array([mj["x"][-1], mj["y"][-1]])
+        values["mujoco_end"] = end_m
+        values["mujoco_end_distance_to_viscous_m"] = float(np.linalg.norm(end_m - end_v))
+        values["mujoco_end_distance_to_coulomb_m"] = float(np.linalg.norm(end_m - end_k))
     fig.suptitle("BigANT, tripod gait at 0.1 Hz — synthetic: no motion capture; row 4 compares "
                  f"the two laws (ends {values['end_distance_m']:.3g} m apart after "
                  f"{path:.3g} m)", fontsize=10)

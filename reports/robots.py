@@ -57,6 +57,33 @@ class Run:
         return bool(self.meta.get("quick", False))
 
 
+# MuJoCo's BigANT driven by our feet stands in for the robot where the thesis drew motion capture
+# (issue 7): the base runs of studies/ch3_peer/fig3_14.toml (same gait, K, μ as these scenes).
+MEASURED = "tab:red"
+MEASURED_LABEL = "MuJoCo (as measured)"
+
+
+def mujoco_as_measured(data: Path, gait: str) -> dict | None:
+    """MuJoCo's base run of `gait` from DATA/ch3_peer/fig3_14.csv: t, x, y, theta and the body
+    velocity (vx, vy in the body frame, omega) by central differences of the sampled poses; None
+    when the file or its MuJoCo rows are missing (a build without MuJoCo, or ch3_peer not run)."""
+    path = data / "ch3_peer" / "fig3_14.csv"
+    if not path.is_file():
+        return None
+    t = c.Table(path, ["gait", "source", "label", "t", "x", "y", "theta"])
+    on = ((t.str("gait") == gait) & (t.str("source") == "mujoco") & (t.str("label") == "base")
+          & np.isfinite(t["t"]))
+    if np.count_nonzero(on) < 3:
+        return None
+    order = np.argsort(t["t"][on])
+    m = {k: t[k][on][order] for k in ("t", "x", "y", "theta")}
+    dx, dy = np.gradient(m["x"], m["t"]), np.gradient(m["y"], m["t"])
+    cth, sth = np.cos(m["theta"]), np.sin(m["theta"])
+    m["vx"], m["vy"] = cth * dx + sth * dy, -sth * dx + cth * dy
+    m["omega"] = np.gradient(m["theta"], m["t"])
+    return m
+
+
 def note_synthetic(fig, text: str) -> None:
     fig.text(0.5, 0.003, text, ha="center", va="bottom", fontsize=7, color="0.35")
 
