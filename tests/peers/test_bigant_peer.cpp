@@ -35,7 +35,7 @@ namespace {
 #endif
 
 /// rad: the most the mirror-symmetric tripod may turn over one gait cycle in MuJoCo.
-constexpr double kTurnBound = 0.01;
+constexpr double kTurnBound = 0.003;
 
 // ---- without MuJoCo
 // ------------------------------------------------------------------------------
@@ -222,7 +222,7 @@ TEST(BigAntPeer, SymmetricTripodDoesNotTurnOverACycle) {
   // ... and the mirror image of the first half cycle is the second: no net turn, and no more than
   // a few degrees of sway within the cycle.
   EXPECT_LT(std::abs(s.end.theta), kTurnBound);
-  EXPECT_LT(max_abs_theta, 0.1);
+  EXPECT_LT(max_abs_theta, 0.05);
   EXPECT_LT(std::abs(s.end.y), 0.05 * s.end.x);
 #endif
 }

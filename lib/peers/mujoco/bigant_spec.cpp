@@ -57,7 +57,12 @@ BigAntPeerSpec bigant_peer_spec(const robots::Walker& walker, int samples) {
   const int n = walker.legs();
   BigAntPeerSpec spec;
   spec.leg_names = walker.leg_names;
-  spec.leg_names.resize(static_cast<std::size_t>(n));
+  if (static_cast<int>(spec.leg_names.size()) != n) {  // unnamed legs: leg0, leg1, ...
+    spec.leg_names.clear();
+    for (int k = 0; k < n; ++k) {
+      spec.leg_names.push_back("leg" + std::to_string(k));
+    }
+  }
   spec.total_mass = walker.robot.Mg / spec.gravity;
   spec.nominal = Eigen::Matrix3Xd::Zero(3, n);
   Eigen::Matrix3Xd q(3, n), qdot(3, n);
