@@ -417,6 +417,7 @@ const std::vector<PointFunction>& registry() {
       v.push_back(std::move(f));
     }
     v.push_back(peer_bigant_point_function());
+    v.push_back(scene_cost_point_function());
     return v;
   }();
   return all;

@@ -43,6 +43,9 @@ struct PointFunction {
 /// (peer_bigant_points.cpp).
 [[nodiscard]] PointFunction peer_bigant_point_function();
 
+/// The per-effect cost of composed scenes (issue 8; sweeps/scene_cost_points.cpp).
+[[nodiscard]] PointFunction scene_cost_point_function();
+
 /// nullptr if no point function has this name.
 [[nodiscard]] const PointFunction* find_point_function(std::string_view name);
 /// "inchworm_vss|inchworm_convergence", for messages.

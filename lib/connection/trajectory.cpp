@@ -1,21 +1,21 @@
 // Trajectory integration (thesis §3.5): the per-step pipeline of connection::evaluate without the
 // local connection A (a trajectory reports v_body and forces, not A; the friction solvers do not
-// read A), with the friction law and the filter fixed at compile time (trajectory.hpp).
+// read A), with the effects fixed at compile time (trajectory.hpp; the loop is in
+// trajectory_kernel.hpp). Here: the checks, the tally and the law × filter instantiations.
 #include "connection/trajectory.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "contact/spring_support.hpp"
+#include "connection/trajectory_kernel.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
 
 namespace slipwalk::connection {
 
-namespace {
+namespace detail {
 
-/// Counts this frame's numerical trouble; the message (allocated only on trouble) keeps the first.
 void tally(const contact::Frame& f, double t, TrajectorySummary& s) {
   using Status = contact::SupportSummary::Status;
   const bool unsupported =
@@ -34,7 +34,19 @@ void tally(const contact::Frame& f, double t, TrajectorySummary& s) {
   }
 }
 
-}  // namespace
+void check_run(const contact::Robot& robot, const FootKinematics& feet,
+               const TrajectoryOptions& options, const TrajectoryData& data,
+               const TrajectorySink& sink) {
+  validate(options);
+  if (!feet || !sink) {
+    throw core::InputError("trajectory", "the foot kinematics and the sink must be set");
+  }
+  if (data.frame.legs() != robot.legs() || data.slip.cols() != robot.legs()) {
+    throw core::InputError("trajectory", "the data's sizes do not match the robot's legs");
+  }
+}
+
+}  // namespace detail
 
 void IirFilter::validate() const {
   if (!(gamma >= 0.0 && gamma < 1.0)) {
@@ -58,59 +70,39 @@ void validate(const TrajectoryOptions& options) {
   }
 }
 
-template <class Law, class Filter>
-TrajectorySummary integrate(const contact::Robot& robot, const FootKinematics& feet,
-                            const TrajectoryOptions& options, const Law& law, Filter filter,
-                            TrajectoryData& data, const TrajectorySink& sink) {
-  validate(options);
-  filter.validate();
-  if (!feet || !sink) {
-    throw core::InputError("trajectory", "the foot kinematics and the sink must be set");
+void LinearResidual::validate(int legs) const {
+  if (B.cols() != 2 * static_cast<Eigen::Index>(legs)) {
+    throw core::InputError("residual.B", "has " + std::to_string(B.cols()) +
+                                             " columns; the robot's " + std::to_string(legs) +
+                                             " legs need " + std::to_string(2 * legs));
   }
-  if (data.frame.legs() != robot.legs() || data.slip.cols() != robot.legs()) {
-    throw core::InputError("trajectory", "the data's sizes do not match the robot's legs");
+  if (!B.allFinite()) {
+    throw core::InputError("residual.B", "has an entry that is not a finite number");
   }
-  filter.reset();
-  contact::Frame& f = data.frame;
-  TrajectorySummary summary;
-  core::Pose2 pose = options.start;
-  for (long long n = 0; n <= options.steps; ++n) {
-    const double t = options.t0 + static_cast<double>(n) * options.dt;
-    // 1. The gait: the feet in the body frame at t.
-    feet(t, f.q, f.qdot);
-    f.theta = pose.theta;
-    // 2. Which feet touch and what they carry (§3.3, Alg. 1).
-    contact::spring_support(robot, f);
-    // 3. The friction law's balance: v_model = f.v_body, F_xy (§3.4).
-    law(robot, f);
-    // 4. The inertia filter (§3.5.2.2) or the identity.
-    const Eigen::Vector3d& v = filter(f.v_body);
-    // 5. Each foot's velocity over the ground, u_k = v + ω S q_k + q̇_k (friction/solvers.hpp).
-    for (int k = 0; k < f.legs(); ++k) {
-      data.slip(0, k) = f.v_body(0) - f.v_body(2) * f.q(1, k) + f.qdot(0, k);
-      data.slip(1, k) = f.v_body(1) + f.v_body(2) * f.q(0, k) + f.qdot(1, k);
-    }
-    tally(f, t, summary);
-    sink(TrajectoryStep{n, t, pose, v, f.v_body, f, data.slip});
-    summary.end = pose;
-    // 6. Move: exact on SE(2) for v held over [t, t + dt).
-    pose = core::advance(pose, v, options.dt);
+}
+
+void PoseNoise::validate() const {
+  if (!(sigma_xy >= 0.0) || !(sigma_theta >= 0.0) || !std::isfinite(sigma_xy) ||
+      !std::isfinite(sigma_theta)) {
+    throw core::InputError("noise.sigma", "must be finite and >= 0, got " +
+                                              core::format_double(sigma_xy) + " and " +
+                                              core::format_double(sigma_theta));
   }
-  summary.frames = options.steps + 1;
-  return summary;
 }
 
 template TrajectorySummary integrate(const contact::Robot&, const FootKinematics&,
-                                     const TrajectoryOptions&, const ViscousCoulombKernel&,
-                                     NoFilter, TrajectoryData&, const TrajectorySink&);
+                                     const TrajectoryOptions&,
+                                     Effects<ViscousCoulombKernel, NoFilter>, TrajectoryData&,
+                                     const TrajectorySink&);
 template TrajectorySummary integrate(const contact::Robot&, const FootKinematics&,
-                                     const TrajectoryOptions&, const ViscousCoulombKernel&,
-                                     IirFilter, TrajectoryData&, const TrajectorySink&);
+                                     const TrajectoryOptions&,
+                                     Effects<ViscousCoulombKernel, IirFilter>, TrajectoryData&,
+                                     const TrajectorySink&);
 template TrajectorySummary integrate(const contact::Robot&, const FootKinematics&,
-                                     const TrajectoryOptions&, const CoulombKernel&, NoFilter,
+                                     const TrajectoryOptions&, Effects<CoulombKernel, NoFilter>,
                                      TrajectoryData&, const TrajectorySink&);
 template TrajectorySummary integrate(const contact::Robot&, const FootKinematics&,
-                                     const TrajectoryOptions&, const CoulombKernel&, IirFilter,
+                                     const TrajectoryOptions&, Effects<CoulombKernel, IirFilter>,
                                      TrajectoryData&, const TrajectorySink&);
 
 }  // namespace slipwalk::connection

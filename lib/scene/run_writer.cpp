@@ -11,7 +11,8 @@
 
 namespace slipwalk::scene {
 
-std::vector<std::string> run_columns(const robots::Walker& walker, bool filtered, bool phases) {
+std::vector<std::string> run_columns(const robots::Walker& walker, bool filtered, bool phases,
+                                     bool noisy) {
   std::vector<std::string> cols{"t", "x", "y", "theta", "vx", "vy", "omega"};
   if (filtered) {
     cols.insert(cols.end(), {"vx_model", "vy_model", "omega_model"});
@@ -28,6 +29,9 @@ std::vector<std::string> run_columns(const robots::Walker& walker, bool filtered
     }
   }
   cols.insert(cols.end(), {"alpha", "beta", "z"});
+  if (noisy) {
+    cols.insert(cols.end(), {"x_true", "y_true", "theta_true"});
+  }
   return cols;
 }
 
@@ -41,9 +45,24 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
     throw core::InputError("--out", what);
   }
   RunResult result;
-  const bool filtered = scene.filter.has_value();
+  const bool filtered = scene.filter.has_value() || scene.residual.has_value();
   const bool phases = static_cast<bool>(sim.walker.phase);
-  result.columns = run_columns(sim.walker, filtered, phases);
+  const bool noisy = scene.noise.has_value();
+  result.columns = run_columns(sim.walker, filtered, phases, noisy);
+  // On a slope or stairs (§5.2): the body origin and each toe (before compression) in the world,
+  // x, y horizontal and z up (terrain::body_world, toe_world), for Figs. 5.2 and 5.3.
+  const bool terrain_columns = scene.terrain.index() != 0;
+  if (terrain_columns) {
+    result.columns.insert(result.columns.end(), {"bx", "by", "bz"});
+    const bool named = static_cast<int>(sim.walker.leg_names.size()) == sim.walker.legs();
+    for (int k = 0; k < sim.walker.legs(); ++k) {
+      const std::string leg =
+          named ? sim.walker.leg_names[static_cast<std::size_t>(k)] : std::to_string(k);
+      for (const char* c : {"px_", "py_", "pz_"}) {
+        result.columns.push_back(std::string(c).append(leg));
+      }
+    }
+  }
 
   // One row per frame, into a temporary file renamed when complete.
   core::AtomicFile file(csv_path);
@@ -53,7 +72,7 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
   const long long every = std::max<long long>(1, frames / 10);
   const auto start = std::chrono::steady_clock::now();
   result.summary = sim.run([&](const connection::TrajectoryStep& s) {
-    csv.cell(s.t).cell(s.pose.x).cell(s.pose.y).cell(s.pose.theta);
+    csv.cell(s.t).cell(s.measured.x).cell(s.measured.y).cell(s.measured.theta);
     csv.cell(s.v_body(0)).cell(s.v_body(1)).cell(s.v_body(2));
     if (filtered) {
       csv.cell(s.v_model(0)).cell(s.v_model(1)).cell(s.v_model(2));
@@ -70,6 +89,17 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
       }
     }
     csv.cell(s.frame.alpha).cell(s.frame.beta).cell(s.frame.z);
+    if (noisy) {
+      csv.cell(s.pose.x).cell(s.pose.y).cell(s.pose.theta);
+    }
+    if (terrain_columns) {
+      const Eigen::Vector3d b = terrain::body_world(scene.terrain, s.pose, s.frame);
+      csv.cell(b(0)).cell(b(1)).cell(b(2));
+      for (int k = 0; k < s.frame.legs(); ++k) {
+        const Eigen::Vector3d p = terrain::toe_world(scene.terrain, s.pose, s.frame, k);
+        csv.cell(p(0)).cell(p(1)).cell(p(2));
+      }
+    }
     csv.end_row();
     if (progress != nullptr && (s.n + 1) % every == 0) {
       *progress << "slipwalk run: " << (s.n + 1) << "/" << frames

@@ -2,14 +2,15 @@
 // The trajectory CSV of a scene run and its provenance sidecar (issue 6), shared by
 // `slipwalk run` and the [[scene]] entries of a study (`slipwalk reproduce`).
 //
-// Columns: t, x, y, theta (world pose; theta unwrapped), vx, vy, omega (the body velocity that
-// moves the pose, body frame), with the filter also vx_model, vy_model, omega_model (before the
-// filter); then per leg L (the walker's leg names): contact_L (0/1), Fz_L, Fx_L, Fy_L (planar
-// force on the foot, body frame), slip_x_L, slip_y_L (the foot's velocity over the ground, body
-// frame: the slip velocity when in contact), and phase_L when the gait defines phases; last
-// alpha, beta, z: the spring support's ground plane (eq. 3.6: roll and pitch slopes, body height,
-// m), from which the roll and pitch of Fig. 3.5 follow (appended so the leg columns keep their
-// places).
+// Columns: t, x, y, theta (world pose; theta unwrapped; with [noise] the measured pose), vx, vy,
+// omega (the body velocity that moves the pose, body frame), with the filter or the residual also
+// vx_model, vy_model, omega_model (the friction balance's, before residual and filter); then per
+// leg L (the walker's leg names): contact_L (0/1), Fz_L, Fx_L, Fy_L (planar force on the foot, body
+// frame), slip_x_L, slip_y_L (the foot's velocity over the ground, body frame: the slip velocity
+// when in contact), and phase_L when the gait defines phases; last alpha, beta, z: the spring
+// support's ground plane (eq. 3.6: roll and pitch slopes, body height, m), from which the roll and
+// pitch of Fig. 3.5 follow (appended so the leg columns keep their places); with [noise] last
+// x_true, y_true, theta_true (the simulated pose, without noise).
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -21,8 +22,9 @@
 namespace slipwalk::scene {
 
 /// The CSV columns of a run of `walker` (see above).
+/// `filtered`: v_body differs from v_model (filter or residual on); `noisy`: [noise] is on.
 [[nodiscard]] std::vector<std::string> run_columns(const robots::Walker& walker, bool filtered,
-                                                   bool phases);
+                                                   bool phases, bool noisy = false);
 
 struct RunResult {
   connection::TrajectorySummary summary;

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <numbers>
 #include <stdexcept>
 #include <type_traits>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "scene/effects.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace slipwalk::scene {
@@ -26,8 +28,11 @@ const std::vector<TableSchema>& schema() {
        {"kind", "frequency", "steer", "duty", "sweep", "dphi", "roll_amplitude", "yaw_amplitude",
         "stride", "swing_height"}},
       {"run", {"duration", "dt", "steps"}},
-      {"friction", {"law", "tol", "max_iterations"}},
+      {"friction", {"law", "tol", "max_iterations", "w"}},
       {"filter", {"gamma"}},
+      {"residual", {"file"}},
+      {"noise", {"sigma", "sigma_theta", "seed"}},
+      {"terrain", {"kind", "angle_deg", "heading_deg", "com_height", "tread", "riser"}},
   };
   return tables;
 }
@@ -273,12 +278,21 @@ void read_run(const TableReader& run, Scene& scene) {
   scene.steps = static_cast<long long>(whole);
 }
 
-void read_friction(const TableReader& friction, Scene& scene) {
-  const std::string law = friction.choice(friction.required("law"), "law", {"viscous", "coulomb"});
-  if (law == "viscous") {
+void read_friction(const TableReader& friction, Scene& scene, int legs) {
+  const std::string law =
+      friction.choice(friction.required("law"), "law", {"viscous", "anisotropic", "coulomb"});
+  const std::string chosen = "law = '" + law + "'";
+  if (law != "anisotropic") {
+    friction.forbid("w", "the anisotropic law", chosen);
+  }
+  if (law != "coulomb") {
     scene.friction.law = connection::FrictionLaw::kViscousCoulomb;
-    friction.forbid("tol", "the coulomb law", "law = 'viscous'");
-    friction.forbid("max_iterations", "the coulomb law", "law = 'viscous'");
+    friction.forbid("tol", "the coulomb law", chosen);
+    friction.forbid("max_iterations", "the coulomb law", chosen);
+    if (law == "anisotropic") {
+      scene.friction.anisotropic = true;
+      scene.friction.w = read_anisotropy(friction, friction.required("w"), legs);
+    }
     return;
   }
   scene.friction.law = connection::FrictionLaw::kCoulomb;
@@ -293,6 +307,53 @@ void read_friction(const TableReader& friction, Scene& scene) {
                    "must be from 1 to 1000000, got " + std::to_string(m));
     scene.friction.coulomb.max_iterations = static_cast<int>(m);
   }
+}
+
+/// [terrain] (§5.2): kind = "flat" | "slope" | "stairs" and that kind's parameters only.
+terrain::Terrain read_terrain(const TableReader& t) {
+  const std::string kind = t.choice(t.required("kind"), "kind", {"flat", "slope", "stairs"});
+  const std::string chosen = "kind = '" + kind + "'";
+  if (kind != "slope") {
+    t.forbid("angle_deg", "the slope", chosen);
+    t.forbid("com_height", "the slope", chosen);
+  }
+  if (kind != "stairs") {
+    t.forbid("tread", "the stairs", chosen);
+    t.forbid("riser", "the stairs", chosen);
+  }
+  if (kind == "flat") {
+    t.forbid("heading_deg", "the slope and the stairs", chosen);
+    return terrain::Flat{};
+  }
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  double heading_deg = 0.0;
+  read_number(t, "heading_deg", heading_deg);
+  if (kind == "slope") {
+    terrain::Slope slope;
+    const toml::node& angle = t.required("angle_deg");
+    const double deg = t.number(angle, "angle_deg");
+    t.check(deg >= 0.0 && deg < 90.0, angle, "angle_deg",
+            "must be in [0, 90) degrees, got " + core::format_double(deg));
+    slope.angle = deg * kDeg;
+    slope.heading = heading_deg * kDeg;
+    read_number(t, "com_height", slope.com_height);
+    if (const toml::node* n = t.find("com_height")) {
+      t.check(slope.com_height >= 0.0, *n, "com_height",
+              "must be >= 0 m, got " + core::format_double(slope.com_height));
+    }
+    return slope;
+  }
+  terrain::Stairs stairs;
+  stairs.heading = heading_deg * kDeg;
+  const toml::node& tread = t.required("tread");
+  stairs.tread = t.number(tread, "tread");
+  t.check(stairs.tread > 0.0, tread, "tread",
+          "must be > 0 m, got " + core::format_double(stairs.tread));
+  const toml::node& riser = t.required("riser");
+  stairs.riser = t.number(riser, "riser");
+  t.check(stairs.riser >= 0.0, riser, "riser",
+          "must be >= 0 m, got " + core::format_double(stairs.riser));
+  return stairs;
 }
 
 }  // namespace
@@ -338,8 +399,10 @@ Scene parse_scene(std::string_view text, const std::string& path) {
 
   // [run] and the effects.
   read_run(TableReader(required_table(doc, "run", path), schema_of("run"), path, all), scene);
+  const int legs = make_walker(scene.gait).legs();
   read_friction(
-      TableReader(required_table(doc, "friction", path), schema_of("friction"), path, all), scene);
+      TableReader(required_table(doc, "friction", path), schema_of("friction"), path, all), scene,
+      legs);
   if (const toml::table* t = table_of(doc, "filter")) {
     const TableReader filter(*t, schema_of("filter"), path, all);
     FilterEffect effect;
@@ -349,6 +412,15 @@ Scene parse_scene(std::string_view text, const std::string& path) {
                    "must be in [0, 1), got " + core::format_double(effect.gamma));
     }
     scene.filter = effect;
+  }
+  if (const toml::table* t = table_of(doc, "residual")) {
+    scene.residual = read_residual(TableReader(*t, schema_of("residual"), path, all), path, legs);
+  }
+  if (const toml::table* t = table_of(doc, "noise")) {
+    scene.noise = read_noise(TableReader(*t, schema_of("noise"), path, all));
+  }
+  if (const toml::table* t = table_of(doc, "terrain")) {
+    scene.terrain = read_terrain(TableReader(*t, schema_of("terrain"), path, all));
   }
   return scene;
 }
@@ -390,8 +462,17 @@ nlohmann::json to_json(const Scene& scene) {
         }
       },
       scene.gait);
-  nlohmann::json friction = {
-      {"law", scene.friction.law == connection::FrictionLaw::kCoulomb ? "coulomb" : "viscous"}};
+  const bool coulomb = scene.friction.law == connection::FrictionLaw::kCoulomb;
+  nlohmann::json friction = {{"law", coulomb                      ? "coulomb"
+                                     : scene.friction.anisotropic ? "anisotropic"
+                                                                  : "viscous"}};
+  if (scene.friction.anisotropic) {
+    nlohmann::json w = nlohmann::json::array();
+    for (Eigen::Index k = 0; k < scene.friction.w.cols(); ++k) {
+      w.push_back({scene.friction.w(0, k), scene.friction.w(1, k)});
+    }
+    friction["w"] = w;
+  }
   if (scene.friction.law == connection::FrictionLaw::kCoulomb) {
     friction["tol"] = scene.friction.coulomb.tol;
     friction["max_iterations"] = scene.friction.coulomb.max_iterations;
@@ -405,6 +486,26 @@ nlohmann::json to_json(const Scene& scene) {
   };
   if (scene.filter) {
     out["filter"] = {{"gamma", scene.filter->gamma}};
+  }
+  if (scene.residual) {
+    out["residual"] = {{"file", scene.residual->file}};
+  }
+  if (scene.noise) {
+    out["noise"] = {{"sigma", scene.noise->sigma},
+                    {"sigma_theta", scene.noise->sigma_theta},
+                    {"seed", scene.noise->seed}};
+  }
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  if (const auto* slope = std::get_if<terrain::Slope>(&scene.terrain)) {
+    out["terrain"] = {{"kind", "slope"},
+                      {"angle_deg", slope->angle * kDeg},
+                      {"heading_deg", slope->heading * kDeg},
+                      {"com_height", slope->com_height}};
+  } else if (const auto* stairs = std::get_if<terrain::Stairs>(&scene.terrain)) {
+    out["terrain"] = {{"kind", "stairs"},
+                      {"tread", stairs->tread},
+                      {"riser", stairs->riser},
+                      {"heading_deg", stairs->heading * kDeg}};
   }
   return out;
 }

@@ -24,14 +24,33 @@
 //   dt = 0.01                # s; or steps = 2000 (exactly one of them)
 //
 //   [friction]               # required
-//   law = "viscous"          # "viscous" (viscous-Coulomb) | "coulomb"
+//   law = "viscous"          # "viscous" (viscous-Coulomb) | "anisotropic" | "coulomb"
 //   # tol = 1e-10            # coulomb only: the relative duality gap to reach
 //   # max_iterations = 500   # coulomb only
+//   # w = [0.5, 0.0]         # anisotropic only, required: eq. 3.19's w (body frame, one pair for
+//                            # every leg) or [[wx, wy], ...] one pair per leg; viscous-Coulomb
+//                            # with H_k ∝ I + w_k w_kᵀ
 //
 //   [filter]                 # optional effect: present = on (§3.5.2.2)
 //   gamma = 0.15             # [0, 1), per step; default 0.15
 //
-// Issue 8 adds the effects terrain, anisotropic friction, residual B and noise as further tables.
+//   [terrain]                # optional effect (§5.2); absent = flat
+//   kind = "slope"           # "flat" | "slope" | "stairs"
+//   angle_deg = 17.0         # slope only, [0, 90), required
+//   heading_deg = 0.0        # slope: the uphill direction; stairs: the rising direction
+//   com_height = 0.0         # slope only, m >= 0: the CoM above the plane (tipping; 0 = eq. 5.1)
+//   # tread = 0.3, riser = 0.12   # stairs only, m, required (tread > 0, riser >= 0)
+//
+//   [residual]               # optional effect (§5.3.1): v_body = (A(q) + B) q̇
+//   file = "B.csv"           # relative to the scene's folder: 3 rows (v_x, v_y, ω) of 2N
+//                            # comma-separated numbers, columns 2k, 2k+1 = leg k's q̇_x, q̇_y
+//                            # (the order of A, eq. 3.20); '#' comments, blank lines skipped
+//
+//   [noise]                  # optional effect: Gaussian noise on the reported pose (motion
+//   sigma = 0.001            # capture, §3.5.1); m on x and y, required, >= 0
+//   # sigma_theta = 0.0      # rad on θ, >= 0
+//   # seed = 0               # integer >= 0; the same seed gives the same numbers
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -42,6 +61,7 @@
 
 #include "connection/trajectory.hpp"
 #include "robots/robots.hpp"
+#include "terrain/terrain.hpp"
 
 namespace slipwalk::scene {
 
@@ -55,10 +75,25 @@ using Gait = std::variant<robots::TripodGait, robots::MetachronalGait, robots::U
 struct FrictionEffect {
   connection::FrictionLaw law = connection::FrictionLaw::kViscousCoulomb;
   friction::CoulombOptions coulomb;  ///< used by the coulomb law only
+  bool anisotropic = false;          ///< law = "anisotropic": viscous-Coulomb with w (eq. 3.19)
+  Eigen::Matrix2Xd w;                ///< (2 x 1): one w for every leg, or (2 x N): per leg
 };
 
 struct FilterEffect {
   double gamma = 0.15;  ///< per step, [0, 1) (connection::IirFilter)
+};
+
+/// The connection residual B of §5.3.1 (connection::LinearResidual), read from a file.
+struct ResidualEffect {
+  std::string file;                            ///< as resolved (relative to the scene's folder)
+  Eigen::Matrix<double, 3, Eigen::Dynamic> B;  ///< (3 x 2N)
+};
+
+/// Gaussian measurement noise on the reported pose (connection::PoseNoise).
+struct NoiseEffect {
+  double sigma = 0.0;        ///< m, on x and y
+  double sigma_theta = 0.0;  ///< rad, on θ
+  std::uint64_t seed = 0;
 };
 
 struct Scene {
@@ -70,7 +105,10 @@ struct Scene {
   double dt = 0.0;          ///< s
   long long steps = 0;      ///< duration = steps · dt; steps + 1 frames t = 0 … duration
   FrictionEffect friction;
-  std::optional<FilterEffect> filter;  ///< present = the inertia filter is on
+  std::optional<FilterEffect> filter;      ///< present = the inertia filter is on
+  std::optional<ResidualEffect> residual;  ///< present = B is added (§5.3.1)
+  std::optional<NoiseEffect> noise;        ///< present = the reported pose is noisy
+  terrain::Terrain terrain;                ///< [terrain] (§5.2); flat when absent
 };
 
 /// The most steps a scene may ask for (a CSV row each).
@@ -108,6 +146,12 @@ struct Simulator {
 
 /// The built-in walker of a gait (robots/robots.hpp); throws the factory's core::InputError.
 [[nodiscard]] robots::Walker make_walker(const Gait& gait);
+
+/// The trajectory kernel of the scene's effects (one connection::Effects bundle).
+[[nodiscard]] Simulator::Kernel compose_kernel(const Scene& scene);
+
+/// "viscous" | "anisotropic" | "coulomb", then "+filter", "+residual", "+noise" as named.
+[[nodiscard]] std::string kernel_name(const Scene& scene);
 
 /// Builds the walker (robots/robots.hpp) and picks the kernel. A robot factory's InputError is
 /// re-raised naming the scene's [gait] table.

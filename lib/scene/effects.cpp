@@ -1,0 +1,157 @@
+// The issue-8 effects of a scene: anisotropy, the residual file, noise (effects.hpp).
+#include "scene/effects.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "core/csv.hpp"
+#include "core/error.hpp"
+
+namespace slipwalk::scene {
+
+namespace {
+
+using core::InputError;
+
+/// Reads a pair [wx, wy] (finite numbers) from an array node.
+Eigen::Vector2d read_pair(const TableReader& t, const toml::node& node) {
+  const toml::array* a = node.as_array();
+  t.check(a != nullptr && a->size() == 2, node, "w",
+          std::string("expected a pair [wx, wy], got ") +
+              (a != nullptr ? "an array of " + std::to_string(a->size()) : type_name(node)));
+  return {t.number(*a->get(0), "w"), t.number(*a->get(1), "w")};
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) {
+    s.remove_prefix(1);
+  }
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) {
+    s.remove_suffix(1);
+  }
+  return s;
+}
+
+}  // namespace
+
+Eigen::Matrix2Xd read_anisotropy(const TableReader& friction, const toml::node& node, int legs) {
+  const toml::array* a = node.as_array();
+  friction.check(a != nullptr, node, "w",
+                 std::string("expected [wx, wy] or one pair per leg, got ") + type_name(node));
+  Eigen::Matrix2Xd w;
+  if (!a->empty() && !a->get(0)->is_array()) {
+    w = read_pair(friction, node);
+    return w;
+  }
+  friction.check(static_cast<int>(a->size()) == legs, node, "w",
+                 "one pair per leg: the robot has " + std::to_string(legs) + " legs, got " +
+                     std::to_string(a->size()) + " pairs");
+  w.resize(2, legs);
+  for (int k = 0; k < legs; ++k) {
+    w.col(k) = read_pair(friction, *a->get(static_cast<std::size_t>(k)));
+  }
+  return w;
+}
+
+Eigen::Matrix<double, 3, Eigen::Dynamic> parse_residual(std::string_view text,
+                                                        const std::string& file, int legs) {
+  const int cols = 2 * legs;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> B(3, cols);
+  int row = 0;
+  int line_no = 0;
+  int last_line = 0;
+  while (!text.empty()) {
+    const std::size_t end = text.find('\n');
+    std::string_view line = text.substr(0, end);
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+    ++line_no;
+    const std::string_view content = line.substr(0, line.find('#'));
+    if (trim(content).empty()) {
+      continue;
+    }
+    const std::string where = file + ":" + std::to_string(line_no);
+    if (row == 3) {
+      throw InputError(where, "a fourth row; B has 3 rows (v_x, v_y, omega)");
+    }
+    int col = 0;
+    std::size_t offset = 0;
+    while (true) {
+      const std::size_t comma = content.find(',', offset);
+      const std::string_view field = content.substr(
+          offset, comma == std::string_view::npos ? std::string_view::npos : comma - offset);
+      const std::string_view value = trim(field);
+      const std::size_t column = offset + static_cast<std::size_t>(value.data() - field.data()) + 1;
+      double x = 0.0;
+      const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), x);
+      if (value.empty() || ec != std::errc() || ptr != value.data() + value.size() ||
+          !std::isfinite(x)) {
+        throw InputError(where + ":" + std::to_string(column),
+                         "'" + std::string(value) + "' is not a finite number");
+      }
+      if (col < cols) {
+        B(row, col) = x;
+      }
+      ++col;
+      if (comma == std::string_view::npos) {
+        break;
+      }
+      offset = comma + 1;
+    }
+    if (col != cols) {
+      throw InputError(where, "row " + std::to_string(row + 1) + " has " + std::to_string(col) +
+                                  " values; the robot's " + std::to_string(legs) + " legs need " +
+                                  std::to_string(cols) + " (q̇_x, q̇_y of each leg)");
+    }
+    ++row;
+    last_line = line_no;
+  }
+  if (row != 3) {
+    throw InputError(file + ":" + std::to_string(std::max(last_line, 1)),
+                     "B has 3 rows (v_x, v_y, omega), the file has " + std::to_string(row));
+  }
+  return B;
+}
+
+ResidualEffect read_residual(const TableReader& residual, const std::string& scene_path, int legs) {
+  const toml::node& node = residual.required("file");
+  const auto* name = node.as_string();
+  residual.check(name != nullptr, node, "file",
+                 std::string("expected a string (a file name), got ") + type_name(node));
+  std::filesystem::path path(name->get());
+  if (path.is_relative()) {
+    path = std::filesystem::path(scene_path).parent_path() / path;
+  }
+  std::ifstream in(path, std::ios::binary);
+  residual.check(static_cast<bool>(in), node, "file", "cannot read '" + path.string() + "'");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ResidualEffect effect;
+  effect.file = path.string();
+  effect.B = parse_residual(text, effect.file, legs);
+  return effect;
+}
+
+NoiseEffect read_noise(const TableReader& noise) {
+  NoiseEffect effect;
+  const toml::node& sigma = noise.required("sigma");
+  effect.sigma = noise.number(sigma, "sigma");
+  noise.check(effect.sigma >= 0.0, sigma, "sigma",
+              "must be >= 0 m, got " + core::format_double(effect.sigma));
+  if (const toml::node* n = noise.find("sigma_theta")) {
+    effect.sigma_theta = noise.number(*n, "sigma_theta");
+    noise.check(effect.sigma_theta >= 0.0, *n, "sigma_theta",
+                "must be >= 0 rad, got " + core::format_double(effect.sigma_theta));
+  }
+  if (const toml::node* n = noise.find("seed")) {
+    const long long seed = noise.integer(*n, "seed");
+    noise.check(seed >= 0, *n, "seed", "must be >= 0, got " + std::to_string(seed));
+    effect.seed = static_cast<std::uint64_t>(seed);
+  }
+  return effect;
+}
+
+}  // namespace slipwalk::scene

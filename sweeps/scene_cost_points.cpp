@@ -1,0 +1,183 @@
+// scene_cost: what each effect of a scene costs per step (issue 8: "unused effects cost
+// nothing"). One point times, in one run and interleaved, the hand-written flat isotropic
+// viscous kernel (scene/reference_kernel.hpp) and composed simulators of BigANT's tripod with
+// exactly one effect each: none (flat isotropic viscous), anisotropic friction, Coulomb friction,
+// the inertia filter, the residual B, measurement noise, a slope, stairs. Each repeat runs every
+// case once (CPU time of the calling thread, the runs' buffers included, as in `slipwalk run`),
+// so a slow moment of a shared machine hits every case alike; ratios are taken per repeat and
+// their median reported. Timed points take turns (a mutex), whatever --jobs says.
+//
+// Rows, one per case: the median and quartiles of the time per step, the median ratio to the
+// hand-written kernel, and the median extra time per step over the composed flat viscous scene
+// with its share of that scene's time.
+#include <Eigen/Core>
+#include <algorithm>
+#include <ctime>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "scene/reference_kernel.hpp"
+#include "scene/scene.hpp"
+#include "sweeps/point_functions.hpp"
+#include "sweeps/point_reader.hpp"
+
+namespace slipwalk::sweeps {
+
+namespace {
+
+const std::vector<std::string_view> kKeys = {"steps", "repeats", "frequency"};
+
+const std::vector<std::string> kColumns = {"id",
+                                           "case",
+                                           "kernel",
+                                           "steps",
+                                           "repeats",
+                                           "ns_per_step",
+                                           "ns_per_step_p25",
+                                           "ns_per_step_p75",
+                                           "ratio_to_handwritten",
+                                           "extra_ns_per_step",
+                                           "share_of_flat"};
+
+struct Case {
+  std::string name;       ///< the effect it adds ("handwritten", "none", "anisotropic", ...)
+  std::string table;      ///< the scene's extra text: [friction] and effect tables
+  bool residual = false;  ///< add a residual B (built here, no file needed)
+};
+
+const std::vector<Case>& cases() {
+  static const std::vector<Case> all = {
+      {"handwritten", "[friction]\nlaw = \"viscous\"\n", false},
+      {"none", "[friction]\nlaw = \"viscous\"\n", false},
+      {"anisotropic", "[friction]\nlaw = \"anisotropic\"\nw = [0.8, 0.3]\n", false},
+      {"coulomb", "[friction]\nlaw = \"coulomb\"\n", false},
+      {"filter", "[friction]\nlaw = \"viscous\"\n[filter]\ngamma = 0.15\n", false},
+      {"residual", "[friction]\nlaw = \"viscous\"\n", true},
+      {"noise", "[friction]\nlaw = \"viscous\"\n[noise]\nsigma = 0.001\nsigma_theta = 0.01\n",
+       false},
+      {"slope", "[friction]\nlaw = \"viscous\"\n[terrain]\nkind = \"slope\"\nangle_deg = 10.0\n",
+       false},
+      {"stairs",
+       "[friction]\nlaw = \"viscous\"\n[terrain]\nkind = \"stairs\"\ntread = 0.3\nriser = 0.12\n",
+       false},
+  };
+  return all;
+}
+
+struct Inputs {
+  long long steps = 2000;
+  long long repeats = 21;
+  double frequency = 0.5;
+};
+
+Inputs read_inputs(const Point& point) {
+  const Reader r(point, "scene_cost", kKeys);
+  Inputs in;
+  in.steps = r.integer("steps", in.steps, 1, 10'000'000);
+  in.repeats = r.integer("repeats", in.repeats, 1, 100'000);
+  in.frequency = r.number("frequency", in.frequency, 1e-6, 100.0);
+  return in;
+}
+
+scene::Scene scene_of(const Case& c, const Inputs& in) {
+  const std::string text =
+      "[robot]\nname = \"bigant\"\n[gait]\nkind = \"tripod\"\nfrequency = " +
+      std::to_string(in.frequency) + "\n[run]\nsteps = " + std::to_string(in.steps) +
+      "\nduration = " + std::to_string(0.01 * static_cast<double>(in.steps)) + "\n" + c.table;
+  scene::Scene s = scene::parse_scene(text, "scene_cost:" + c.name);
+  if (c.residual) {
+    // A B of the size of thesis Fig. 5.5's corrections: a few percent of the connection.
+    scene::ResidualEffect r;
+    r.file = "(built in)";
+    r.B = Eigen::Matrix<double, 3, Eigen::Dynamic>::Constant(3, 12, 0.01);
+    r.B.row(1) *= -1.0;
+    s.residual = r;
+  }
+  return s;
+}
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const double at = q * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(at);
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+PointResult run_point(const Point& point) {
+  const Inputs in = read_inputs(point);
+  std::vector<scene::Scene> scenes;
+  std::vector<scene::Simulator> sims;
+  for (const Case& c : cases()) {
+    scenes.push_back(scene_of(c, in));
+    sims.push_back(scene::compose(scenes.back()));
+  }
+  // The sink reads what a CSV writer would and keeps it observable.
+  double observed = 0.0;
+  const connection::TrajectorySink sink = [&observed](const connection::TrajectoryStep& s) {
+    observed += s.measured.x + s.v_body(0) + s.slip(0, 0) + s.frame.Fz(0);
+  };
+  const std::size_t n = cases().size();
+  std::vector<std::vector<double>> ns(n);
+  static std::mutex one_timing_at_a_time;
+  const std::lock_guard<std::mutex> lock(one_timing_at_a_time);
+  const double per_run = static_cast<double>(in.steps + 1);
+  for (long long r = -1; r < in.repeats; ++r) {  // r = −1 warms up
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t0 = thread_cpu_seconds();
+      if (i == 0) {
+        connection::TrajectoryData data(sims[0].walker.robot);
+        (void)scene::run_flat_viscous(sims[0].walker, sims[0].options, data, sink);
+      } else {
+        (void)sims[i].run(sink);
+      }
+      const double s = thread_cpu_seconds() - t0;
+      if (r >= 0) {
+        ns[i].push_back(1e9 * s / per_run);
+      }
+    }
+  }
+  PointResult out;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<double> ratio;
+    std::vector<double> extra;
+    for (std::size_t r = 0; r < ns[i].size(); ++r) {
+      ratio.push_back(ns[i][r] / ns[0][r]);
+      extra.push_back(ns[i][r] - ns[1][r]);
+    }
+    const double extra_ns = median(extra);
+    out.rows.push_back(Row{point.id, cases()[i].name,
+                           i == 0 ? std::string("handwritten") : sims[i].kernel_name, in.steps,
+                           in.repeats, median(ns[i]), quantile(ns[i], 0.25), quantile(ns[i], 0.75),
+                           median(ratio), extra_ns, extra_ns / median(ns[1])});
+  }
+  if (!(observed == observed)) {  // a NaN in the outputs: say so rather than time garbage
+    out.failed = true;
+    out.message = "a run produced NaN";
+  }
+  return out;
+}
+
+}  // namespace
+
+PointFunction scene_cost_point_function() {
+  return {"scene_cost",
+          "issue 8: time per step of BigANT's tripod through the hand-written flat isotropic "
+          "viscous kernel and composed scenes with one effect each (one row per case)",
+          kColumns, [](const Point& p) { (void)read_inputs(p); }, run_point};
+}
+
+}  // namespace slipwalk::sweeps

@@ -1,0 +1,384 @@
+// The issue-8 effects of a scene: anisotropic friction, the residual B of §5.3.1 and measurement
+// noise. Oracles: every parser error names file:line:col (residual files file:line[:col]);
+// effects switched off or neutral (w = 0, B = 0, σ = 0) are bit-identical to the plain kernel;
+// the anisotropic forces are eq. 3.19's H u recomputed from the reported slip; the residual adds
+// exactly B·vec(q̇) to the balance's velocity; the noise is the same for a seed, other for another
+// seed, has mean ≈ 0 and recovers σ, and leaves the simulated motion untouched.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "scene/effects.hpp"
+#include "scene/scene.hpp"
+
+namespace slipwalk::scene {
+namespace {
+
+/// BigANT's tripod for 1 s in 20 steps with `effects` appended (tables and keys).
+std::string scene_text(const std::string& friction, const std::string& effects = "") {
+  return "[robot]\nname = \"bigant\"\n[gait]\nkind = \"tripod\"\nfrequency = 0.5\n"
+         "[run]\nduration = 1.0\ndt = 0.05\n[friction]\n" +
+         friction + "\n" + effects;
+}
+
+const std::string kViscous = "law = \"viscous\"";
+const std::string kAnisotropic = "law = \"anisotropic\"\nw = [0.8, 0.3]";
+
+/// Lines before `needle` in `text`, plus one: the line `needle` is on.
+int line_of(const std::string& text, const std::string& needle) {
+  const std::size_t at = text.find(needle);
+  EXPECT_NE(at, std::string::npos) << needle;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+void expect_error(const std::string& text, const std::string& at, const std::string& part,
+                  const std::string& path = "s.toml") {
+  try {
+    (void)parse_scene(text, path);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.where(), at) << e.what();
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
+
+/// A temporary folder with files, removed at the end of the test.
+struct TempDir {
+  std::filesystem::path dir;
+  TempDir() {
+    dir = std::filesystem::temp_directory_path() /
+          ("slipwalk_effects_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+           "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir);
+  }
+  ~TempDir() { std::filesystem::remove_all(dir); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  }
+};
+
+/// A 3 x 12 residual file's text with entries b0 + 0.001 (3c + r).
+std::string residual_csv(double b0) {
+  std::string out = "# B for BigANT: rows v_x, v_y, omega; columns qdot_x, qdot_y per leg\n";
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 12; ++c) {
+      out.append(c == 0 ? "" : ", ").append(std::to_string(b0 + 0.001 * (3 * c + r)));
+    }
+    out.append("\n");
+  }
+  return out;
+}
+
+struct Frame {
+  core::Pose2 pose;
+  core::Pose2 measured;
+  Eigen::Vector3d v_body;
+  Eigen::Vector3d v_model;
+  Eigen::Matrix3Xd qdot;
+  Eigen::VectorXd Fz;
+  Eigen::Matrix2Xd Fxy;
+  Eigen::Matrix2Xd slip;
+};
+
+std::vector<Frame> run(const Scene& scene) {
+  std::vector<Frame> out;
+  const Simulator sim = compose(scene);
+  (void)sim.run([&](const connection::TrajectoryStep& s) {
+    out.push_back(
+        {s.pose, s.measured, s.v_body, s.v_model, s.frame.qdot, s.frame.Fz, s.frame.Fxy, s.slip});
+  });
+  return out;
+}
+
+void expect_same_motion(const std::vector<Frame>& a, const std::vector<Frame>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].pose.x, b[i].pose.x) << i;
+    EXPECT_EQ(a[i].pose.y, b[i].pose.y) << i;
+    EXPECT_EQ(a[i].pose.theta, b[i].pose.theta) << i;
+    EXPECT_EQ(a[i].v_body, b[i].v_body) << i;
+    EXPECT_EQ(a[i].Fxy, b[i].Fxy) << i;
+  }
+}
+
+// ---- anisotropic friction ---------------------------------------------------------------------
+
+TEST(SceneEffects, AnisotropicReadsOneOrPerLegW) {
+  const Scene one = parse_scene(scene_text(kAnisotropic), "s.toml");
+  EXPECT_TRUE(one.friction.anisotropic);
+  ASSERT_EQ(one.friction.w.cols(), 1);
+  EXPECT_EQ(one.friction.w(0, 0), 0.8);
+  const Simulator sim = compose(one);
+  EXPECT_EQ(sim.kernel_name, "anisotropic");
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_EQ(sim.walker.robot.w.col(k), Eigen::Vector2d(0.8, 0.3));
+  }
+  const Scene per_leg = parse_scene(
+      scene_text("law = \"anisotropic\"\nw = [[0.8, 0.3], [0.8, 0.3], [0.8, 0.3], [0.8, 0.3], "
+                 "[0.8, 0.3], [0.8, 0.3]]"),
+      "s.toml");
+  EXPECT_EQ(per_leg.friction.w.cols(), 6);
+  expect_same_motion(run(one), run(per_leg));
+  EXPECT_EQ(to_json(one)["friction"]["law"], "anisotropic");
+  EXPECT_EQ(to_json(one)["friction"]["w"][0][1], 0.3);
+}
+
+TEST(SceneEffects, AnisotropicWithZeroWIsIsotropicBitForBit) {
+  // w = 0 is the isotropic law of eq. 3.19 (H ∝ I + w wᵀ).
+  expect_same_motion(run(parse_scene(scene_text("law = \"anisotropic\"\nw = [0, 0]"), "s.toml")),
+                     run(parse_scene(scene_text(kViscous), "s.toml")));
+}
+
+TEST(SceneEffects, AnisotropicForcesAreHTimesSlip) {
+  // Eq. 3.19: F_k = −μ_k F_z,k (I + w wᵀ) u_k for feet in contact, recomputed from the sink's
+  // slip; and the planar balance Σ F = 0, Σ q × F = 0. With this w the motion differs from the
+  // isotropic one (the effect is really on).
+  const Scene scene = parse_scene(scene_text(kAnisotropic), "s.toml");
+  const Simulator sim = compose(scene);
+  const Eigen::Vector2d w(0.8, 0.3);
+  const Eigen::Matrix2d G = Eigen::Matrix2d::Identity() + w * w.transpose();
+  (void)sim.run([&](const connection::TrajectoryStep& s) {
+    Eigen::Vector2d force = Eigen::Vector2d::Zero();
+    double moment = 0.0;
+    double size = 0.0;
+    for (int k = 0; k < s.frame.legs(); ++k) {
+      const Eigen::Vector2d F = s.frame.Fxy.col(k);
+      const Eigen::Vector2d expected =
+          -sim.walker.robot.mu(k) * s.frame.Fz(k) * (G * s.slip.col(k));
+      EXPECT_LE((F - expected).norm(), 1e-12 * (1.0 + expected.norm())) << s.n << " " << k;
+      force += F;
+      moment += s.frame.q(0, k) * F(1) - s.frame.q(1, k) * F(0);
+      size += F.norm();
+    }
+    EXPECT_LE(force.norm(), 1e-12 * (1.0 + size)) << s.n;
+    EXPECT_LE(std::abs(moment), 1e-12 * (1.0 + size)) << s.n;
+  });
+  const std::vector<Frame> iso = run(parse_scene(scene_text(kViscous), "s.toml"));
+  const std::vector<Frame> aniso = run(scene);
+  double change = 0.0;
+  double size = 0.0;
+  for (std::size_t i = 0; i < iso.size(); ++i) {
+    change = std::max(change, (aniso[i].v_body - iso[i].v_body).norm());
+    size = std::max(size, iso[i].v_body.norm());
+  }
+  EXPECT_GT(change, 0.01 * size);
+}
+
+TEST(SceneEffects, AnisotropicErrors) {
+  const std::string w_given = scene_text("law = \"viscous\"\nw = [0.5, 0]");
+  expect_error(w_given, "s.toml:" + std::to_string(line_of(w_given, "law") + 1) + ":5",
+               "friction.w: a parameter of the anisotropic law, given with law = 'viscous'");
+  const std::string missing = scene_text("law = \"anisotropic\"");
+  expect_error(missing, "s.toml:" + std::to_string(line_of(missing, "[friction]")) + ":1",
+               "missing required key 'w' in [friction]");
+  const std::string misspelt = scene_text("law = \"anisotropc\"");
+  expect_error(misspelt, "s.toml:" + std::to_string(line_of(misspelt, "law")) + ":7",
+               "did you mean 'anisotropic'?");
+  const std::string wrong_type = scene_text("law = \"anisotropic\"\nw = 0.5");
+  expect_error(wrong_type, "s.toml:" + std::to_string(line_of(wrong_type, "law") + 1) + ":5",
+               "friction.w: expected [wx, wy] or one pair per leg, got a float");
+  const std::string three = scene_text("law = \"anisotropic\"\nw = [0.5, 0, 1]");
+  expect_error(three, "s.toml:" + std::to_string(line_of(three, "law") + 1) + ":5",
+               "expected a pair [wx, wy], got an array of 3");
+  const std::string legs = scene_text("law = \"anisotropic\"\nw = [[0.5, 0], [0.5, 0]]");
+  expect_error(legs, "s.toml:" + std::to_string(line_of(legs, "law") + 1) + ":5",
+               "the robot has 6 legs, got 2 pairs");
+  const std::string text = scene_text("law = \"anisotropic\"\nw = [0.5, \"x\"]");
+  expect_error(text, "s.toml:" + std::to_string(line_of(text, "law") + 1) + ":11",
+               "friction.w: expected a number, got a string");
+  const std::string misspelt_key = scene_text("law = \"anisotropic\"\nww = [0.5, 0]");
+  expect_error(misspelt_key, "s.toml:" + std::to_string(line_of(misspelt_key, "ww")) + ":1",
+               "did you mean 'w'?");
+}
+
+// ---- residual B (§5.3.1) ----------------------------------------------------------------------
+
+TEST(SceneEffects, ResidualAddsBTimesQdot) {
+  const TempDir tmp;
+  tmp.write("B.csv", residual_csv(0.01));
+  const std::string path =
+      tmp.write("s.toml", scene_text(kViscous, "[residual]\nfile = \"B.csv\"\n"));
+  const Scene scene = read_scene(path);
+  ASSERT_TRUE(scene.residual.has_value());
+  EXPECT_EQ(scene.residual->file, (tmp.dir / "B.csv").string());
+  EXPECT_EQ(scene.residual->B(1, 4), 0.01 + 0.001 * 13);
+  const Simulator sim = compose(scene);
+  EXPECT_EQ(sim.kernel_name, "viscous+residual");
+  const std::vector<Frame> frames = run(scene);
+  const std::vector<Frame> plain = run(parse_scene(scene_text(kViscous), "s.toml"));
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const Frame& f = frames[i];
+    Eigen::VectorXd qdot(12);
+    for (int k = 0; k < 6; ++k) {
+      qdot.segment<2>(2 * k) = f.qdot.col(k).head<2>();
+    }
+    const Eigen::Vector3d expected = f.v_model + scene.residual->B * qdot;
+    EXPECT_LE((f.v_body - expected).norm(), 1e-15 * (1.0 + expected.norm())) << i;
+    // The balance itself is the plain kernel's (B changes the pose, not the frame's model).
+    if (i == 0) {
+      EXPECT_EQ(f.v_model, plain[i].v_model);
+    }
+  }
+  EXPECT_NE(frames.back().pose.x, plain.back().pose.x);
+}
+
+TEST(SceneEffects, ZeroResidualIsThePlainKernelBitForBit) {
+  const TempDir tmp;
+  tmp.write("B.csv", "0,0,0,0,0,0,0,0,0,0,0,0\n0,0,0,0,0,0,0,0,0,0,0,0\n0,0,0,0,0,0,0,0,0,0,0,0\n");
+  const std::string path =
+      tmp.write("s.toml", scene_text(kViscous, "[residual]\nfile = \"B.csv\"\n"));
+  expect_same_motion(run(read_scene(path)), run(parse_scene(scene_text(kViscous), "s.toml")));
+}
+
+TEST(SceneEffects, ResidualFileErrorsNameFileAndLine) {
+  const std::string f = "B.csv";
+  auto err = [&](const std::string& text, const std::string& at, const std::string& part) {
+    try {
+      (void)parse_residual(text, f, 2);
+      ADD_FAILURE() << text;
+    } catch (const core::InputError& e) {
+      EXPECT_EQ(e.where(), at) << e.what();
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> B =
+      parse_residual("# c\n\n1, 2, 3, 4  # row 1\n 5,6,7,8\n9,10,11,1.2e1\n", f, 2);
+  EXPECT_EQ(B(2, 3), 12.0);
+  EXPECT_EQ(B(0, 0), 1.0);
+  err("1,2,3,4\n1,2,3\n1,2,3,4\n", "B.csv:2", "row 2 has 3 values; the robot's 2 legs need 4");
+  err("1,2,3,4\n1,2,x,4\n1,2,3,4\n", "B.csv:2:5", "'x' is not a finite number");
+  err("1,2,3,4\n1,2,,4\n1,2,3,4\n", "B.csv:2:5", "'' is not a finite number");
+  err("1,2,3,4\n1,2,3,4\n", "B.csv:2", "B has 3 rows (v_x, v_y, omega), the file has 2");
+  err("1,2,3,4\n1,2,3,4\n1,2,3,4\n1,2,3,4\n", "B.csv:4", "a fourth row");
+  err("1,2,3,4\n1,2,3,nan\n1,2,3,4\n", "B.csv:2:7", "'nan' is not a finite number");
+  err("", "B.csv:1", "the file has 0");
+
+  // Through a scene: a missing file, a wrong type, a misspelt key, a wrong size for the robot
+  // (the file's first row), a missing key.
+  const TempDir tmp;
+  tmp.write("small.csv", "1,2,3,4\n1,2,3,4\n1,2,3,4\n");
+  auto scene_err = [&](const std::string& residual, const std::string& at,
+                       const std::string& part) {
+    const std::string text = scene_text(kViscous, "[residual]\n" + residual);
+    const std::string path = tmp.write("s.toml", text);
+    try {
+      (void)read_scene(path);
+      ADD_FAILURE() << text;
+    } catch (const core::InputError& e) {
+      const std::string where = e.where();
+      const std::string expected = at.rfind("B:", 0) == 0
+                                       ? (tmp.dir / "small.csv").string() + at.substr(1)
+                                       : path + ":" + at;
+      EXPECT_EQ(where, expected) << e.what();
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  const int line = line_of(scene_text(kViscous, "[residual]\n"), "[residual]") + 1;
+  scene_err("file = \"none.csv\"\n", std::to_string(line) + ":8", "residual.file: cannot read");
+  scene_err("file = 3\n", std::to_string(line) + ":8", "expected a string (a file name)");
+  scene_err("fil = \"B.csv\"\n", std::to_string(line) + ":1", "did you mean 'file'?");
+  scene_err("", std::to_string(line - 1) + ":1", "missing required key 'file' in [residual]");
+  scene_err("file = \"small.csv\"\n", "B:1", "row 1 has 4 values; the robot's 6 legs need 12");
+}
+
+// ---- measurement noise ------------------------------------------------------------------------
+
+std::string noise(const std::string& keys) { return "[noise]\n" + keys + "\n"; }
+
+TEST(SceneEffects, NoiseIsDeterministicForASeedAndLeavesTheMotionAlone) {
+  const Scene a = parse_scene(scene_text(kViscous, noise("sigma = 0.01\nseed = 7")), "s.toml");
+  EXPECT_EQ(compose(a).kernel_name, "viscous+noise");
+  const std::vector<Frame> first = run(a);
+  const std::vector<Frame> second = run(a);
+  const std::vector<Frame> other =
+      run(parse_scene(scene_text(kViscous, noise("sigma = 0.01\nseed = 8")), "s.toml"));
+  const std::vector<Frame> plain = run(parse_scene(scene_text(kViscous), "s.toml"));
+  expect_same_motion(first, plain);  // the simulated motion is not touched
+  int differ = 0;
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(first[i].measured.x, second[i].measured.x) << i;
+    EXPECT_EQ(first[i].measured.y, second[i].measured.y) << i;
+    EXPECT_EQ(first[i].measured.theta, first[i].pose.theta) << i;  // sigma_theta = 0
+    differ += first[i].measured.x != other[i].measured.x ? 1 : 0;
+  }
+  EXPECT_EQ(differ, static_cast<int>(first.size()));
+}
+
+TEST(SceneEffects, ZeroNoiseIsThePlainKernelBitForBit) {
+  const std::vector<Frame> quiet =
+      run(parse_scene(scene_text(kViscous, noise("sigma = 0.0\nseed = 3")), "s.toml"));
+  const std::vector<Frame> plain = run(parse_scene(scene_text(kViscous), "s.toml"));
+  expect_same_motion(quiet, plain);
+  for (std::size_t i = 0; i < quiet.size(); ++i) {
+    EXPECT_EQ(quiet[i].measured.x, plain[i].pose.x);
+    EXPECT_EQ(quiet[i].measured.y, plain[i].pose.y);
+    EXPECT_EQ(quiet[i].measured.theta, plain[i].pose.theta);
+  }
+}
+
+TEST(SceneEffects, NoiseHasMeanZeroAndRecoversSigma) {
+  // 20 001 frames: the sample mean of n normals is within 4 σ/√n of 0 and the sample standard
+  // deviation within 4·σ/√(2n) (≈ 2 %) of σ, except with probability ~1e-4 (fixed seeds: the
+  // test is deterministic; these bounds say why it is not fitted to them).
+  const std::string text =
+      "[robot]\nname = \"bigant\"\n[gait]\nkind = \"tripod\"\n[run]\nduration = 200.0\n"
+      "dt = 0.01\n[friction]\nlaw = \"viscous\"\n[noise]\nsigma = 0.002\nsigma_theta = 0.03\n"
+      "seed = 12345\n";
+  const Scene scene = parse_scene(text, "s.toml");
+  const Simulator sim = compose(scene);
+  double n = 0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sum2 = Eigen::Vector3d::Zero();
+  (void)sim.run([&](const connection::TrajectoryStep& s) {
+    const Eigen::Vector3d e(s.measured.x - s.pose.x, s.measured.y - s.pose.y,
+                            s.measured.theta - s.pose.theta);
+    n += 1;
+    sum += e;
+    sum2 += e.cwiseProduct(e);
+  });
+  ASSERT_EQ(n, 20001);
+  const Eigen::Vector3d sigma(0.002, 0.002, 0.03);
+  for (int i = 0; i < 3; ++i) {
+    const double mean = sum(i) / n;
+    const double sd = std::sqrt(sum2(i) / n - mean * mean);
+    EXPECT_LE(std::abs(mean), 4.0 * sigma(i) / std::sqrt(n)) << i;
+    EXPECT_LE(std::abs(sd / sigma(i) - 1.0), 4.0 / std::sqrt(2.0 * n)) << i;
+  }
+}
+
+TEST(SceneEffects, NoiseErrors) {
+  auto at = [](const std::string& text, const std::string& needle, int col) {
+    return "s.toml:" + std::to_string(line_of(text, needle)) + ":" + std::to_string(col);
+  };
+  const std::string negative = scene_text(kViscous, noise("sigma = -0.1"));
+  expect_error(negative, at(negative, "sigma = ", 9), "noise.sigma: must be >= 0 m, got -0.1");
+  const std::string missing = scene_text(kViscous, noise("seed = 1"));
+  expect_error(missing, at(missing, "[noise]", 1), "missing required key 'sigma' in [noise]");
+  const std::string seed_type = scene_text(kViscous, noise("sigma = 0.1\nseed = 1.5"));
+  expect_error(seed_type, at(seed_type, "seed", 8), "noise.seed: expected an integer");
+  const std::string seed_range = scene_text(kViscous, noise("sigma = 0.1\nseed = -2"));
+  expect_error(seed_range, at(seed_range, "seed", 8), "noise.seed: must be >= 0, got -2");
+  const std::string theta = scene_text(kViscous, noise("sigma = 0.1\nsigma_theta = \"a\""));
+  expect_error(theta, at(theta, "sigma_theta", 15), "noise.sigma_theta: expected a number");
+  const std::string misspelt = scene_text(kViscous, noise("sigma = 0.1\nsigma_thet = 0.1"));
+  expect_error(misspelt, at(misspelt, "sigma_thet", 1), "did you mean 'sigma_theta'?");
+  // A parameter of the noise without [noise]: in another table, or at the top level.
+  const std::string elsewhere = scene_text(kViscous, "[filter]\nsigma = 0.1\n");
+  expect_error(elsewhere, at(elsewhere, "sigma", 1), "it belongs in [noise]");
+  const std::string top = "seed = 3\n" + scene_text(kViscous);
+  expect_error(top, "s.toml:1:1", "it belongs in [noise]");
+  const std::string residual_elsewhere = scene_text(kViscous, "[filter]\nfile = \"B.csv\"\n");
+  expect_error(residual_elsewhere, at(residual_elsewhere, "file", 1), "it belongs in [residual]");
+}
+
+}  // namespace
+}  // namespace slipwalk::scene
