@@ -49,8 +49,17 @@ struct SupportSummary {
     kIterationLimit,  ///< safety stop after SupportOptions::max_iterations contact changes (not
                       ///< reached in general position; see contact/spring_support.cpp)
   };
+  /// Which algorithm produced the state (contact/spring_support.hpp).
+  enum class Route {
+    kNewton,  ///< the active-set Newton route on U, certified (consistent contact set, U's
+              ///< gradient zero to rounding, nonsingular cell)
+    kPath,    ///< Alg. 1's path-following search (asked for, or the Newton route did not certify)
+  };
   Status status = Status::kBalanced;
-  int iterations = 0;     ///< contact changes along the search path
+  Route route = Route::kPath;
+  int iterations = 0;     ///< contact changes: along Alg. 1's path (kPath), or summed over the
+                          ///< Newton route's successive contact sets (kNewton)
+  int newton_steps = 0;   ///< Newton steps the Newton route took (also when it then fell back)
   double residual = 0.0;  ///< max(|ΣF_z − Mg|/Mg, |M_x|/(Mg·L), |M_y|/(Mg·L)) at the end, with
                           ///< L = max_j |q_xy,j| the robot's horizontal size
   std::string message;    ///< empty unless something noteworthy happened

@@ -71,6 +71,8 @@
 #include <limits>
 #include <string>
 
+#include "contact/support_newton.hpp"
+
 namespace slipwalk::contact {
 
 namespace {
@@ -433,9 +435,16 @@ void spring_support(const Robot& robot, Frame& frame, const SupportOptions& opti
   check_frame(robot, frame);
   SupportSummary& summary = frame.support;
   summary.status = Status::kBalanced;
+  summary.route = SupportSummary::Route::kPath;
   summary.iterations = 0;
+  summary.newton_steps = 0;
   summary.residual = 0.0;
   summary.message.clear();
+
+  // ---- the fast route: active-set Newton on U, certified or handed over ----------------------
+  if (options.newton && options.path == nullptr && detail::support_by_newton(robot, frame)) {
+    return;
+  }
 
   Search s(robot, frame);
   const int limit = options.max_iterations > 0 ? options.max_iterations

@@ -14,6 +14,10 @@
 // matrix, the order and signs of eqs. 3.11/3.12, ties, termination) are derived in
 // spring_support.cpp.
 //
+// Routes: by default an active-set Newton method on U is tried first (support_newton.cpp); it
+// either certifies the unique minimizer, which is then the end of Alg. 1's path too, or hands
+// over to Alg. 1. SupportSummary::route says which ran.
+//
 // Contact convention: a foot is in contact when h_j < 0 by more than the rounding error of h_j
 // itself; a foot with h_j = 0 (exactly touching) is reported as not in contact, and its load is
 // zero either way (F_z is continuous in h_j).
@@ -39,6 +43,11 @@ struct SupportOptions {
   /// gives SupportSummary::Status::kIterationLimit.
   int max_iterations = 0;
   std::vector<SupportStep>* path = nullptr;  ///< if set, every visited state is appended
+  /// Try the active-set Newton route first (contact/support_newton.hpp): a few vectorized passes
+  /// over the feet, certified or rejected, with Alg. 1 as the fallback. Same result where it
+  /// certifies (the unique minimizer of U); ignored when `path` is set, since only Alg. 1 has a
+  /// path. false: always Alg. 1.
+  bool newton = true;
 };
 
 /// The default iteration limit for n legs (see SupportOptions::max_iterations).

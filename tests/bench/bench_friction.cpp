@@ -81,6 +81,8 @@ void run(benchmark::State& state, Pool& pool, Solve solve) {
   double certified = 0.0;
   double changes = 0.0;
   double contacts = 0.0;
+  double newton = 0.0;
+  double steps = 0.0;
   long long calls = 0;
   Frame& f = pool.frame;
   for (auto _ : state) {
@@ -93,6 +95,8 @@ void run(benchmark::State& state, Pool& pool, Solve solve) {
     certified += f.friction.converged ? 1.0 : 0.0;
     changes += f.support.iterations;
     contacts += static_cast<double>(std::count(f.contact.begin(), f.contact.end(), 1));
+    newton += f.support.route == slipwalk::contact::SupportSummary::Route::kNewton ? 1.0 : 0.0;
+    steps += f.support.newton_steps;
     ++calls;
   }
   const double c = calls > 0 ? static_cast<double>(calls) : 1.0;
@@ -102,6 +106,8 @@ void run(benchmark::State& state, Pool& pool, Solve solve) {
   state.counters["ok"] = certified / c;
   state.counters["changes"] = changes / c;    // contact changes of the support search
   state.counters["contacts"] = contacts / c;  // feet on the ground
+  state.counters["newton"] = newton / c;      // support certified by the Newton route
+  state.counters["steps"] = steps / c;        // its Newton steps (also when it handed over)
 }
 
 void BM_CopyInputs(benchmark::State& state) {

@@ -1,0 +1,19 @@
+#pragma once
+// Internal to contact/: the fast route of the spring-support search (spring_support.hpp), an
+// active-set (semismooth) Newton method on the convex potential U of spring_support.cpp. Each
+// step is one vectorized pass over the feet; the answer is certified or rejected, never guessed.
+#include "contact/robot.hpp"
+
+namespace slipwalk::contact::detail {
+
+/// Tries the Newton route. Returns true when it certified the global minimizer of U: the contact
+/// set read off the feet's heights did not change over the last step, ∇U = 0 to rounding on that
+/// set, and the cell's Hessian is safely nonsingular (three or more contacts off a line), so the
+/// minimizer is unique and equals the end of Alg. 1's path. Then frame.alpha, beta, z, contact,
+/// Fz and support.residual, iterations, newton_steps, route are written (status kBalanced).
+/// Returns false otherwise (a cell with fewer than three contacts off a line, a cycling contact
+/// set, too many steps): frame.support.newton_steps says how far it got, the other outputs are
+/// left to the path search. Uses frame.work_rows as scratch; does not allocate.
+bool support_by_newton(const Robot& robot, Frame& frame);
+
+}  // namespace slipwalk::contact::detail

@@ -1,0 +1,199 @@
+// The Newton route of the spring support (contact/support_newton.cpp) against Alg. 1's path
+// (SupportOptions::newton = false) and the convex-potential oracle: where it certifies it must
+// end at the path's state (the unique minimizer of U), and where it does not the caller's
+// result is the path's own. Degenerate supports (one or two contacts, rows, tipping, exact ties)
+// must hand over, never certify a wrong state.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "contact/robot.hpp"
+#include "contact/spring_support.hpp"
+#include "support/count_allocations.hpp"
+#include "support/support_scenes.hpp"
+
+namespace {
+
+using namespace slipwalk::testing::support_scenes;  // NOLINT(google-build-using-namespace)
+using Status = slipwalk::contact::SupportSummary::Status;
+using Route = slipwalk::contact::SupportSummary::Route;
+
+// The two routes' outputs agree: the same state to `rel` of the height scale, the same loads,
+// the same contacts wherever a foot is clearly off its plane.
+void expect_same_state(const Scene& s, const Frame& a, const Frame& b, double rel) {
+  const double Z = height_scale(s, b);
+  const double L = size_of(s);
+  EXPECT_NEAR(a.z, b.z, rel * Z);
+  EXPECT_NEAR(L * a.alpha, L * b.alpha, rel * Z);
+  EXPECT_NEAR(L * a.beta, L * b.beta, rel * Z);
+  for (int j = 0; j < s.legs(); ++j) {
+    EXPECT_NEAR(a.Fz(j), b.Fz(j), rel * s.K(j) * Z + 1e-13 * s.Mg) << "leg " << j;
+    const double h = slipwalk::contact::foot_height(b, j, b.alpha, b.beta, b.z);
+    if (std::abs(h) > 1e-9 * Z) {
+      EXPECT_EQ(a.contact[j], b.contact[j]) << "leg " << j << " h " << h;
+    }
+  }
+}
+
+// Solves with both routes; when the Newton route certified, checks it against the path.
+// Returns whether it certified.
+bool compare_routes(const Scene& s, double rel = 1e-11) {
+  const Solved fast = solve(s);
+  const Solved path = solve(s, false, false);
+  EXPECT_EQ(path.frame.support.route, Route::kPath);
+  if (fast.frame.support.route != Route::kNewton) {
+    // Handed over: the result is the path's, bit for bit.
+    EXPECT_EQ(fast.frame.support.status, path.frame.support.status);
+    EXPECT_EQ(fast.frame.z, path.frame.z);
+    EXPECT_EQ(fast.frame.alpha, path.frame.alpha);
+    EXPECT_EQ(fast.frame.beta, path.frame.beta);
+    EXPECT_EQ(fast.frame.contact, path.frame.contact);
+    return false;
+  }
+  EXPECT_EQ(fast.frame.support.status, Status::kBalanced);
+  EXPECT_EQ(path.frame.support.status, Status::kBalanced) << path.frame.support.message;
+  EXPECT_GE(fast.frame.support.newton_steps, 1);
+  EXPECT_LE(fast.frame.support.residual, 1e-10 + 100.0 * rounding_floor(s, fast.frame));
+  const Balance b = balance(s, fast.frame);
+  EXPECT_LE(b.force, 1e-10 + 100.0 * rounding_floor(s, fast.frame));
+  EXPECT_LE(b.moment, 1e-10 + 100.0 * rounding_floor(s, fast.frame));
+  expect_same_state(s, fast.frame, path.frame, rel);
+  return true;
+}
+
+TEST(SupportNewton, RandomRobotsEndWhereThePathEnds) {
+  std::mt19937_64 rng(101);
+  int certified = 0;
+  const int trials = 2000;
+  for (int trial = 0; trial < trials; ++trial) {
+    const int n = 3 + static_cast<int>(rng() % 58);
+    const Scene s = random_supported(rng, n);
+    SCOPED_TRACE("trial " + std::to_string(trial) + ", " + std::to_string(n) + " legs");
+    certified += compare_routes(s) ? 1 : 0;
+  }
+  std::printf("Newton route certified %d of %d random robots\n", certified, trials);
+  // The route is the default because it certifies almost every supported frame (if it stopped
+  // certifying, everything would still be right but slow: this catches that).
+  EXPECT_GE(certified, trials * 9 / 10);
+}
+
+TEST(SupportNewton, StiffnessesOverSixDecadesAndManyLegsMatchTheOracle) {
+  std::mt19937_64 rng(103);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = trial < 50 ? 3 + static_cast<int>(rng() % 20) : 50 + 20 * (trial - 50);
+    const Scene s = random_supported(rng, n, trial < 50 ? 6.0 : 2.0);
+    SCOPED_TRACE("trial " + std::to_string(trial) + ", " + std::to_string(n) + " legs");
+    compare_routes(s, 1e-9);
+    const Solved fast = solve(s);
+    ASSERT_EQ(fast.frame.support.status, Status::kBalanced);
+    expect_matches_oracle(s, fast.frame, "Newton route");
+  }
+}
+
+TEST(SupportNewton, FlatHexapodIsOneStepWithoutContactChanges) {
+  const Scene s = from_feet({{0.25, 0.15, -0.12},
+                             {0.0, 0.2, -0.12},
+                             {-0.25, 0.15, -0.12},
+                             {0.25, -0.15, -0.12},
+                             {0.0, -0.2, -0.12},
+                             {-0.25, -0.15, -0.12}},
+                            {2000.0}, 30.0);
+  const Solved r = solve(s);
+  EXPECT_EQ(r.frame.support.route, Route::kNewton);
+  EXPECT_EQ(r.frame.support.newton_steps, 1);
+  EXPECT_EQ(r.frame.support.iterations, 0);
+  EXPECT_NEAR(r.frame.z, 0.12 - 30.0 / 12000.0, 1e-15);
+}
+
+// Supports the route must not certify: one foot, two feet, feet in a row, the CoM outside, a
+// foot under the CoM alone, two feet on a diagonal with the others exactly lifted by the tilt
+// range (a see-saw). The default call must return the path's status and state.
+TEST(SupportNewton, DegenerateSupportsHandOverToThePath) {
+  const std::vector<Scene> scenes = {
+      from_feet({{0.0, 0.0, -0.2}}, {500.0}, 10.0),
+      from_feet({{0.1, 0.05, -0.2}}, {500.0}, 10.0),
+      from_feet({{-0.2, 0.1, -0.1}, {0.4, -0.2, -0.13}}, {300.0, 4000.0}, 12.0),
+      from_feet({{0.1, 0.05, -0.2}, {0.1, -0.05, -0.21}}, {500.0, 90.0}, 10.0),
+      from_feet({{-0.3, 0.0, -0.1},
+                 {0.1, 0.0, -0.1},
+                 {0.4, 0.0, -0.102},
+                 {0.0, 0.3, -0.05},
+                 {0.05, -0.3, -0.05}},
+                {1000.0}, 10.0),
+      from_feet({{0.3, 0.1, -0.1}, {0.0, 0.0, -0.2}, {-0.2, 0.2, -0.1}}, {500.0}, 10.0),
+      from_feet({{1.0, 1.0, -5.0}, {-1.0, 1.0, -10.0}, {-1.0, -1.0, -10.0}, {1.0, -1.0, -10.0}},
+                {1.0}, 4.0),
+  };
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    SCOPED_TRACE("scene " + std::to_string(i));
+    const Solved fast = solve(scenes[i]);
+    EXPECT_EQ(fast.frame.support.route, Route::kPath);
+    compare_routes(scenes[i]);
+  }
+}
+
+// Exact ties: a coarse grid of feet (rows, duplicates, feet under the CoM, all at one height),
+// stiffnesses over six decades, and feet moved to touch the balance plane exactly.
+TEST(SupportNewton, TiesAndGridsAgreeWithThePath) {
+  std::mt19937_64 rng(107);
+  int certified = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int n = 3 + static_cast<int>(rng() % 12);
+    Scene s;
+    s.q.resize(3, n);
+    s.K.resize(n);
+    s.Mg = std::pow(10.0, uniform(rng, -2.0, 3.0));
+    const int kind = static_cast<int>(rng() % 3);
+    for (int j = 0; j < n; ++j) {
+      s.K(j) = kind == 2 ? 1.0 : std::pow(10.0, uniform(rng, -1.0, 5.0));
+      s.q(0, j) = 0.25 * static_cast<double>(static_cast<int>(rng() % 7) - 3);
+      s.q(1, j) = 0.25 * static_cast<double>(static_cast<int>(rng() % 7) - 3);
+      s.q(2, j) = kind == 0 ? -0.5 : -0.125 * static_cast<double>(rng() % 4);
+    }
+    SCOPED_TRACE("trial " + std::to_string(trial) + " kind " + std::to_string(kind));
+    certified += compare_routes(s, 1e-9) ? 1 : 0;
+  }
+  std::printf("Newton route certified %d of 3000 grid robots\n", certified);
+  std::mt19937_64 rng2(109);
+  for (int trial = 0; trial < 300; ++trial) {
+    Scene t = random_supported(rng2, 4 + static_cast<int>(rng2() % 30));
+    const Solved first = solve(t, false, false);
+    for (int j = 0; j < t.legs(); ++j) {
+      const Frame& g = first.frame;
+      if (g.contact[j] == 0) {  // lower every foot in the air onto the balance plane
+        t.q(2, j) -= slipwalk::contact::foot_height(g, j, g.alpha, g.beta, g.z);
+      }
+    }
+    SCOPED_TRACE("touching trial " + std::to_string(trial));
+    compare_routes(t, 1e-9);
+  }
+}
+
+TEST(SupportNewton, DiskRobotsOfTheBenchmarkCertifyWithoutAllocating) {
+  std::mt19937_64 rng(113);
+  for (const int n : {3, 6, 12, 24, 50, 200}) {
+    Robot robot = slipwalk::contact::uniform_robot(n, 1000.0, 0.8, 10.0);
+    Frame f(robot);
+    int certified = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+      for (int k = 0; k < n; ++k) {
+        const double a = 2.0 * kPi * k / n;
+        f.q.col(k) << 0.3 * std::cos(a) + 0.05 * uniform(rng, -1.0, 1.0),
+            0.3 * std::sin(a) + 0.05 * uniform(rng, -1.0, 1.0), -0.1 + 0.01 * uniform(rng, -1, 1);
+      }
+      const long long before = slipwalk::testing::allocation_count();
+      slipwalk::contact::spring_support(robot, f);
+      const long long allocations = slipwalk::testing::allocation_count() - before;
+      if (f.support.route == Route::kNewton) {
+        ++certified;
+        EXPECT_EQ(allocations, 0);
+      }
+      EXPECT_LE(f.support.newton_steps, 12);
+    }
+    EXPECT_GE(certified, 150) << n << " legs";
+  }
+}
+
+}  // namespace
