@@ -96,6 +96,11 @@ ROBOT_FIGS = ["fig3_5", "fig3_6_9", "fig3_7_10", "fig3_8", "fig3_11", "fig3_12"]
 SCRIPTS += ROBOT_FIGS
 SCRIPT_STUDY.update({name: "ch3_robots" for name in ROBOT_FIGS})
 STUDIES.append("ch3_robots")
+# Issue 8: what each scene effect costs per step (studies/scene_effects), in the performance
+# section (perf_scene_body.html).
+SCRIPTS.append("perf_scene")
+SCRIPT_STUDY["perf_scene"] = "scene_effects"
+STUDIES.append("scene_effects")
 WIDE.update(ROBOT_FIGS)
 
 
@@ -432,6 +437,8 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
                   if (staging / "performance_table.html").is_file() else missing.format(c.STUDY))
     perf_legged = ((staging / "perf_legged_body.html").read_text()
                    if (staging / "perf_legged_body.html").is_file() else missing.format("ch3_legged"))
+    perf_scene = ((staging / "perf_scene_body.html").read_text()
+                  if (staging / "perf_scene_body.html").is_file() else missing.format("scene_effects"))
     stab_table = ((staging / "stability_table.html").read_text()
                   if (staging / "stability_table.html").is_file() else missing.format(c.STUDY))
     v = values.by_script
@@ -514,7 +521,7 @@ F = 73.575 N, μ = 0.05 (slowest convergence of the range). The table gives the 
 method that reaches the target error. Every integrator over ten decades of tolerance, both models,
 the fixed-step method without event location and the three error sources separated: the
 <a href="cost_of_accuracy.html">cost of accuracy</a> page.</p>{perf_table}</div></div>
-{perf_legged}</section>
+{perf_legged}{perf_scene}</section>
 <section id="stability"><h2>Stability — hard cases</h2>
 <div class="fig wide"><img src="stability.png" alt="hard cases">
 <div class="text"><p>Each hard case run by every method; the closed form ("exact") is the reference.
