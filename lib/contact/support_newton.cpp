@@ -13,8 +13,10 @@
 // heights at v⁺ and repeating is the semismooth Newton method on ∇U = 0 (the active-set method for
 // this piecewise quadratic). It starts from the all-feet cell (the least-squares plane of all feet,
 // like §3.3.1's Newton on z*, which also starts from all feet) and usually needs two or three
-// steps: each step is one pass over the feet, two feet per SSE2 instruction, with no branch on
-// data. Its Newton system is solved in the scaled state (αL, βL, z) of spring_support.cpp.
+// steps: each step is one pass over the feet, four at a time (an AVX2 clone where the CPU has
+// it, else pairs of SSE2 registers: same code, same rounding), with no branch on data, and a
+// 3 × 3 solve by cofactors (one division). Its Newton system is solved in the scaled state
+// (αL, βL, z) of spring_support.cpp.
 //
 // Certificate. Stop when the contact set read off the heights at v (the outputs' convention:
 // h_j < 0 beyond the rounding error of h_j) equals the set the step to v was computed on; then
@@ -33,17 +35,17 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+
+// The 32-byte vectors below never cross a call (internal, inlined helpers), so GCC's note that
+// passing them without AVX would change the ABI does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace slipwalk::contact::detail {
 
 namespace {
-
-// Two feet per SSE2 register. GCC/Clang vector extensions rather than Eigen arrays, because the
-// per-foot contact test is a lane mask (Eigen 3.4 does not vectorize select()).
-using V2 = double __attribute__((vector_size(16)));
-using M2 = std::int64_t __attribute__((vector_size(16)));
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -58,15 +60,51 @@ constexpr double kAboveGround = 1e300;
 // the last pass.
 enum Row : int { kY = 0, kMinusX, kQz, kK, kOn, kRows };
 
-V2 load(const double* p) {
-  V2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-void store(double* p, V2 v) { std::memcpy(p, &v, sizeof v); }
-V2 splat(double x) { return V2{x, x}; }
-V2 select(M2 mask, V2 x) { return std::bit_cast<V2>(std::bit_cast<M2>(x) & mask); }
-double lanes_sum(V2 v) { return v[0] + v[1]; }
+// Function multiversioning (GCC on x86-64): an x86-64-v3 (AVX2) clone of support_by_newton beside
+// the portable default, chosen at load time; other compilers and targets get the default only.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define SLIPWALK_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SLIPWALK_CLONES
+#endif
+
+// W feet per step in GCC/Clang vector extensions rather than Eigen arrays, because the per-foot
+// contact test is a lane mask (Eigen 3.4 does not vectorize select()). W = 4 is one AVX register
+// in the x86-64-v3 clone and two SSE2 registers in the default one; the code and hence the
+// rounding are the same in both.
+template <int W>
+struct VectorTypes;
+template <>
+struct VectorTypes<2> {
+  using V = double __attribute__((vector_size(16)));
+  using M = std::int64_t __attribute__((vector_size(16)));
+};
+template <>
+struct VectorTypes<4> {
+  using V = double __attribute__((vector_size(32)));
+  using M = std::int64_t __attribute__((vector_size(32)));
+};
+
+template <int W>
+struct Lanes {
+  using V = typename VectorTypes<W>::V;
+  using M = typename VectorTypes<W>::M;
+  static V load(const double* p) {
+    V v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  static void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
+  static V splat(double x) { return V{} + x; }
+  static V select(M mask, V x) { return std::bit_cast<V>(std::bit_cast<M>(x) & mask); }
+  static double sum(V v) {
+    double s = 0.0;
+    for (int i = 0; i < W; ++i) {
+      s += v[i];
+    }
+    return s;
+  }
+};
 
 struct Rows {
   const double* in[kOn];
@@ -89,59 +127,83 @@ struct Cell {
   double changes = 0.0;
 };
 
-// One pass over the feet at v. kAll: every foot counts (the start); else the feet with
-// h_j < −noise (Rows::noise), whose flags are stored in row kOn and compared with the previous
-// ones.
-template <bool kAll>
-Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg) {
-  const V2 v0 = splat(v(0));
-  const V2 v1 = splat(v(1));
-  const V2 v2 = splat(v(2));
-  const V2 threshold = splat(-R.noise(v));
-  const V2 one = splat(1.0);
-  V2 s_k{}, s_y{}, s_x{}, s_yy{}, s_yx{}, s_xx{}, g_y{}, g_x{}, g_z{}, changes{};
-  for (Eigen::Index j = 0; j < R.cols; j += 2) {
-    const V2 y = load(R.in[kY] + j);
-    const V2 x = load(R.in[kMinusX] + j);
-    const V2 K = load(R.in[kK] + j);
-    const V2 h = y * v0 + x * v1 + (load(R.in[kQz] + j) + v2);  // eq. 3.6
-    V2 w;
-    V2 on;
-    if constexpr (kAll) {
-      w = K;
-      on = select(K > splat(0.0), one);
-    } else {
-      const M2 touching = h < threshold;
-      w = select(touching, K);
-      on = select(touching, one);
-      const V2 d = on - load(R.on + j);
-      changes += d * d;
-    }
-    store(R.on + j, on);
-    const V2 wy = w * y;
-    const V2 wx = w * x;
-    const V2 wh = w * h;
-    s_k += w;
-    s_y += wy;
-    s_x += wx;
-    s_yy += wy * y;
-    s_yx += wy * x;
-    s_xx += wx * x;
-    g_y += wh * y;
-    g_x += wh * x;
-    g_z += wh;
+// The sums of one pass, per lane.
+template <int W>
+struct Sums {
+  using V = typename Lanes<W>::V;
+  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes{};
+};
+
+// Feet j … j + W − 1 of a pass at v (see pass()).
+template <bool kAll, int W>
+[[gnu::always_inline]] inline void add_feet(const Rows& R, Eigen::Index j, const Eigen::Vector3d& v,
+                                            double threshold, Sums<W>& s) {
+  using L = Lanes<W>;
+  using V = typename L::V;
+  const V y = L::load(R.in[kY] + j);
+  const V x = L::load(R.in[kMinusX] + j);
+  const V K = L::load(R.in[kK] + j);
+  const V h = y * L::splat(v(0)) + x * L::splat(v(1)) + (L::load(R.in[kQz] + j) + L::splat(v(2)));
+  V w;
+  V on;
+  if constexpr (kAll) {
+    w = K;
+    on = L::select(K > L::splat(0.0), L::splat(1.0));
+  } else {
+    const typename L::M touching = h < L::splat(threshold);
+    w = L::select(touching, K);
+    on = L::select(touching, L::splat(1.0));
+    const V d = on - L::load(R.on + j);
+    s.changes += d * d;
   }
+  L::store(R.on + j, on);
+  const V wy = w * y;
+  const V wx = w * x;
+  const V wh = w * h;
+  s.k += w;
+  s.y += wy;
+  s.x += wx;
+  s.yy += wy * y;
+  s.yx += wy * x;
+  s.xx += wx * x;
+  s.gy += wh * y;
+  s.gx += wh * x;
+  s.gz += wh;
+}
+
+// One pass over the feet at v, four at a time (and the last two: the rows' length is even).
+// kAll: every foot counts (the start); else the feet with h_j < −noise (Rows::noise), whose flags
+// are stored in row kOn and compared with the previous ones.
+template <bool kAll>
+[[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg) {
+  const double threshold = -R.noise(v);
+  Sums<4> s4;
+  Sums<2> s2;
+  Eigen::Index j = 0;
+  for (; j + 4 <= R.cols; j += 4) {
+    add_feet<kAll>(R, j, v, threshold, s4);
+  }
+  if (j < R.cols) {
+    add_feet<kAll>(R, j, v, threshold, s2);
+  }
+  const auto sum = [&s4, &s2](auto Sums<4>::*m4, auto Sums<2>::*m2) {
+    return Lanes<4>::sum(s4.*m4) + Lanes<2>::sum(s2.*m2);
+  };
+  const double sy = sum(&Sums<4>::y, &Sums<2>::y);
+  const double sx = sum(&Sums<4>::x, &Sums<2>::x);
+  const double syx = sum(&Sums<4>::yx, &Sums<2>::yx);
   Cell c;
-  c.H << lanes_sum(s_yy), lanes_sum(s_yx), lanes_sum(s_y),  //
-      lanes_sum(s_yx), lanes_sum(s_xx), lanes_sum(s_x),     //
-      lanes_sum(s_y), lanes_sum(s_x), lanes_sum(s_k);
-  c.g << lanes_sum(g_y), lanes_sum(g_x), lanes_sum(g_z) + Mg;
-  c.changes = lanes_sum(changes);
+  c.H << sum(&Sums<4>::yy, &Sums<2>::yy), syx, sy,  //
+      syx, sum(&Sums<4>::xx, &Sums<2>::xx), sx,     //
+      sy, sx, sum(&Sums<4>::k, &Sums<2>::k);
+  c.g << sum(&Sums<4>::gy, &Sums<2>::gy), sum(&Sums<4>::gx, &Sums<2>::gx),
+      sum(&Sums<4>::gz, &Sums<2>::gz) + Mg;
+  c.changes = sum(&Sums<4>::changes, &Sums<2>::changes);
   return c;
 }
 
 // dv = −H⁻¹ g, solved in the scaled state ũ = D v, D = diag(L, L, 1) (H̃ = D⁻¹ H D⁻¹,
-// g̃ = D⁻¹ g) by an unpivoted LDLᵀ; false when H̃ is not safely definite (see the top).
+// g̃ = D⁻¹ g) by the adjugate; false when H̃ is not safely definite (see the top).
 bool newton_step(const Cell& c, double L, Eigen::Vector3d& dv) {
   const double il = 1.0 / L;
   const double h00 = c.H(0, 0) * il * il;
@@ -150,29 +212,27 @@ bool newton_step(const Cell& c, double L, Eigen::Vector3d& dv) {
   const double h20 = c.H(2, 0) * il;
   const double h21 = c.H(2, 1) * il;
   const double h22 = c.H(2, 2);
-  const double d0 = h00;
-  if (!(d0 > 0.0)) {
-    return false;
-  }
-  const double l10 = h10 / d0;
-  const double l20 = h20 / d0;
-  const double d1 = h11 - l10 * h10;
-  if (!(d1 > 0.0)) {
-    return false;
-  }
-  const double l21 = (h21 - l20 * h10) / d1;
-  const double d2 = h22 - l20 * h20 - l21 * l21 * d1;
+  // Cofactors: all independent, one division (an LDLᵀ chains three, which cost more than the
+  // rest of a step on small robots).
+  const double c00 = h11 * h22 - h21 * h21;
+  const double c01 = h21 * h20 - h10 * h22;
+  const double c02 = h10 * h21 - h11 * h20;
+  const double c11 = h00 * h22 - h20 * h20;
+  const double c12 = h10 * h20 - h00 * h21;
+  const double c22 = h00 * h11 - h10 * h10;
+  const double det = h00 * c00 + h10 * c01 + h20 * c02;
   const double tr = h00 + h11 + h22;
-  if (!(d2 > 0.0) || !(4.0 * d0 * d1 * d2 > kDefiniteTol * tr * tr * tr)) {
+  // Positive leading minors (Sylvester), and λ_min ≥ det / (tr/2)² safely above zero.
+  if (!(h00 > 0.0) || !(c22 > 0.0) || !(4.0 * det > kDefiniteTol * tr * tr * tr)) {
     return false;
   }
   const double b0 = -c.g(0) * il;
-  const double b1 = -c.g(1) * il - l10 * b0;
-  const double b2 = -c.g(2) - l20 * b0 - l21 * b1;
-  const double x2 = b2 / d2;
-  const double x1 = b1 / d1 - l21 * x2;
-  const double x0 = b0 / d0 - l10 * x1 - l20 * x2;
-  dv = Eigen::Vector3d(x0 * il, x1 * il, x2);
+  const double b1 = -c.g(1) * il;
+  const double b2 = -c.g(2);
+  const double inv = 1.0 / det;
+  dv = Eigen::Vector3d((c00 * b0 + c01 * b1 + c02 * b2) * inv * il,
+                       (c01 * b0 + c11 * b1 + c12 * b2) * inv * il,
+                       (c02 * b0 + c12 * b1 + c22 * b2) * inv);
   return true;
 }
 
@@ -184,7 +244,7 @@ double residual(const Cell& c, double Mg, double L) {
 
 }  // namespace
 
-bool support_by_newton(const Robot& robot, Frame& frame) {
+SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
   const int n = frame.legs();
   auto& W = frame.work_rows;
   if (W.rows() < kRows || W.cols() < n || W.cols() % 2 != 0) {
