@@ -7,6 +7,45 @@
 
 namespace slipwalk::connection {
 
+namespace {
+
+// A_k = −c_k P J_kᵀ G_k for every foot (P = D M̃⁺ D). The isotropic instantiation (G = I, the
+// usual robot) has no anisotropy terms: 6 multiply-adds per foot.
+template <bool kAniso>
+void columns(const contact::Robot& robot, contact::Frame& frame, const Eigen::Matrix3d& P) {
+  const double p00 = P(0, 0), p01 = P(0, 1), p02 = P(0, 2);
+  const double p10 = P(1, 0), p11 = P(1, 1), p12 = P(1, 2);
+  const double p20 = P(2, 0), p21 = P(2, 1), p22 = P(2, 2);
+  double* a = frame.A.data();  // column-major 3 × 2N: foot k's six entries are contiguous
+  for (int k = 0; k < frame.legs(); ++k) {
+    const double c = frame.work_n(k);  // zero columns for a foot without friction (c = 0)
+    const double qx = frame.q(0, k);
+    const double qy = frame.q(1, k);
+    // c G = c (I + w wᵀ), and the third row of J_kᵀ G_k, (S q)ᵀ G.
+    double g00 = c;
+    double g01 = 0.0;
+    double g11 = c;
+    if constexpr (kAniso) {
+      const double w0 = robot.w(0, k);
+      const double w1 = robot.w(1, k);
+      g00 = c * (1.0 + w0 * w0);
+      g01 = c * w0 * w1;
+      g11 = c * (1.0 + w1 * w1);
+    }
+    const double s0 = -qy * g00 + qx * g01;
+    const double s1 = -qy * g01 + qx * g11;
+    double* col = a + 6 * static_cast<std::ptrdiff_t>(k);
+    col[0] = -(p00 * g00 + p01 * g01 + p02 * s0);
+    col[1] = -(p10 * g00 + p11 * g01 + p12 * s0);
+    col[2] = -(p20 * g00 + p21 * g01 + p22 * s0);
+    col[3] = -(p00 * g01 + p01 * g11 + p02 * s1);
+    col[4] = -(p10 * g01 + p11 * g11 + p12 * s1);
+    col[5] = -(p20 * g01 + p21 * g11 + p22 * s1);
+  }
+}
+
+}  // namespace
+
 void local_connection(const contact::Robot& robot, contact::Frame& frame) {
   namespace d = friction::detail;
   Eigen::Matrix3d M;
@@ -19,22 +58,10 @@ void local_connection(const contact::Robot& robot, contact::Frame& frame) {
   Eigen::Matrix3d P = solver.inverse();
   P.row(2) *= cs.inv_L;
   P.col(2) *= cs.inv_L;
-  for (int k = 0; k < frame.legs(); ++k) {
-    const double c = frame.work_n(k);
-    // c G = c (I + w wᵀ), and the third row of J_kᵀ G_k, (S q)ᵀ G.
-    const double w0 = robot.w(0, k);
-    const double w1 = robot.w(1, k);
-    const double g00 = c * (1.0 + w0 * w0);
-    const double g01 = c * w0 * w1;
-    const double g11 = c * (1.0 + w1 * w1);
-    const double qx = frame.q(0, k);
-    const double qy = frame.q(1, k);
-    const double s0 = -qy * g00 + qx * g01;
-    const double s1 = -qy * g01 + qx * g11;
-    for (int i = 0; i < 3; ++i) {  // zero columns for a foot without friction (c = 0)
-      frame.A(i, 2 * k) = -(P(i, 0) * g00 + P(i, 1) * g01 + P(i, 2) * s0);
-      frame.A(i, 2 * k + 1) = -(P(i, 0) * g01 + P(i, 1) * g11 + P(i, 2) * s1);
-    }
+  if (cs.anisotropic) {
+    columns<true>(robot, frame, P);
+  } else {
+    columns<false>(robot, frame, P);
   }
 }
 
