@@ -418,6 +418,9 @@ const std::vector<PointFunction>& registry() {
     }
     v.push_back(peer_bigant_point_function());
     v.push_back(scene_cost_point_function());
+    for (auto& f : slope_point_functions()) {
+      v.push_back(std::move(f));
+    }
     return v;
   }();
   return all;

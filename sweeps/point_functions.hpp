@@ -45,6 +45,8 @@ struct PointFunction {
 
 /// The per-effect cost of composed scenes (issue 8; sweeps/scene_cost_points.cpp).
 [[nodiscard]] PointFunction scene_cost_point_function();
+/// BigANT up a slope: progress per cycle and the stall slope (§5.2.1; sweeps/slope_points.cpp).
+[[nodiscard]] std::vector<PointFunction> slope_point_functions();
 
 /// nullptr if no point function has this name.
 [[nodiscard]] const PointFunction* find_point_function(std::string_view name);

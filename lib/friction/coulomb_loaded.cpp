@@ -23,7 +23,8 @@
 // fixed where S does not slip (by S itself when it spans two points; the exact Φ minimized over
 // the rotations about S's point when it is one point, by 1-D Newton; the exact Φ by Newton when S
 // is empty), the sliding feet get their exact Coulomb forces and S the path's forces plus the
-// least (c-weighted) correction that balances the load exactly. If those lie in their ellipses,
+// least (c-weighted) correction that balances the load exactly (or, near the rims, a balanced
+// point of the ellipses found by alternating projections). If those lie in their ellipses,
 // the gap is zero to rounding and the answer is certified; otherwise the path goes on.
 // Sliding is detected twice: (1) before any iteration,
 // the pure translation along the load, ρ((e, 0)) = Σ c_k ‖W_k e‖ − ‖f_xy‖ < 0 with e = f_xy/‖f_xy‖
@@ -32,6 +33,7 @@
 // hold).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "friction/balance.hpp"
 #include "friction/solvers.hpp"
@@ -197,9 +199,87 @@ void path_forces(const Context& cx, const Eigen::Vector3d& y, double delta) {
   }
 }
 
-/// The polish (see the top of the file) from the path's point y at δ. On success frame.v_body,
-/// Fxy and the summary hold the certified answer.
-bool polish(Context& cx, const Eigen::Vector3d& y_path, double delta) {
+/// Foot k's force inside its friction ellipse Fᵀ G⁻¹ F ≤ (shrink · c)² (G⁻¹ = I − w wᵀ/(1 + ‖w‖²))?
+/// Returns the ratio √(Fᵀ G⁻¹ F) / c.
+double ellipse_ratio(const Context& cx, int k, const Eigen::Vector2d& F) {
+  const auto w = cx.robot.w.col(k);
+  const double wf = w.dot(F);
+  return std::sqrt(std::max(F.squaredNorm() - wf * wf / (1.0 + w.squaredNorm()), 0.0)) /
+         cx.frame.work_n(k);
+}
+
+/// The static feet's forces (marked in work_idx; frame.Fxy holds the path's forces for them and
+/// the exact ones for the sliding feet) made to balance the load exactly and to lie in their
+/// ellipses. First the least c-weighted correction of the path's forces (N = Σ_S c_s J̃ᵀ J̃,
+/// r = the imbalance); when a force leaves its ellipse (static feet near their rims: a load close
+/// to what they can hold), alternating projections between the balanced forces and the ellipses
+/// (shrunk by 1e-13; radial scaling, the projection for isotropic feet), which converge to a
+/// point of both when one exists. Returns false if none is found.
+bool fit_static_forces(const Context& cx, const Eigen::Matrix3d& N, const Eigen::Vector3d& r) {
+  contact::Frame& frame = cx.frame;
+  const double inv_L = 1.0 / cx.L;
+  const auto is_static = [&](int k) { return frame.work_idx[static_cast<std::size_t>(k)] != 0; };
+  // (a) the least c-weighted correction.
+  detail::Psd3 weighted;
+  weighted.factorize(N);
+  const Eigen::Vector3d lambda = -weighted.solve(r);
+  bool inside = true;
+  Eigen::Matrix3d N_plain = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < frame.legs(); ++k) {
+    if (!is_static(k)) {
+      continue;
+    }
+    const double c = frame.work_n(k);
+    const Eigen::Vector2d sk = detail::lever(frame, k, inv_L);
+    frame.Fxy.col(k) +=
+        c * Eigen::Vector2d(lambda(0) + lambda(2) * sk(0), lambda(1) + lambda(2) * sk(1));
+    inside = inside && ellipse_ratio(cx, k, frame.Fxy.col(k)) <= 1.0 + 1e-12;
+    detail::add_jt_p_j(N_plain, sk, Eigen::Matrix2d::Identity());
+  }
+  if (inside) {
+    return true;
+  }
+  // (b) alternating projections.
+  detail::Psd3 plain;
+  plain.factorize(N_plain);
+  constexpr double kShrink = 1.0 - 1e-13;
+  for (int it = 0; it < 2000; ++it) {
+    // Into the ellipses.
+    for (int k = 0; k < frame.legs(); ++k) {
+      if (is_static(k)) {
+        const double ratio = ellipse_ratio(cx, k, frame.Fxy.col(k));
+        if (ratio > kShrink) {
+          frame.Fxy.col(k) *= kShrink / ratio;
+        }
+      }
+    }
+    // Onto the balance: the imbalance of all forces, removed by the least (plain) correction.
+    Eigen::Vector3d imbalance = cx.f;
+    for (int k = 0; k < frame.legs(); ++k) {
+      if (frame.work_n(k) != 0.0) {
+        imbalance += detail::jt(detail::lever(frame, k, inv_L), frame.Fxy.col(k));
+      }
+    }
+    const Eigen::Vector3d mu = -plain.solve(imbalance);
+    inside = true;
+    for (int k = 0; k < frame.legs(); ++k) {
+      if (is_static(k)) {
+        const Eigen::Vector2d sk = detail::lever(frame, k, inv_L);
+        frame.Fxy.col(k) += Eigen::Vector2d(mu(0) + mu(2) * sk(0), mu(1) + mu(2) * sk(1));
+        inside = inside && ellipse_ratio(cx, k, frame.Fxy.col(k)) <= 1.0 + 1e-12;
+      }
+    }
+    if (inside) {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// The polish (see the top of the file) from the path's point y at δ, with the feet at
+/// ‖W u‖ ≤ limit taken as static. On success frame.v_body, Fxy and the summary hold the certified
+/// answer.
+bool polish(Context& cx, const Eigen::Vector3d& y_path, double delta, double limit) {
   contact::Frame& frame = cx.frame;
   const double inv_L = 1.0 / cx.L;
   // ---- the static set S (marked in work_idx), its first foot and its spread ------------------
@@ -214,7 +294,7 @@ bool polish(Context& cx, const Eigen::Vector3d& y_path, double delta) {
       continue;
     }
     const Eigen::Vector2d u = detail::slip(frame, k, detail::lever(frame, k, inv_L), y_path);
-    if (std::sqrt(u.dot(cx.phi.G(k) * u)) <= 10.0 * delta) {
+    if (std::sqrt(u.dot(cx.phi.G(k) * u)) <= limit) {
       mark = 1;
       ++m;
       if (first < 0) {
@@ -330,27 +410,8 @@ bool polish(Context& cx, const Eigen::Vector3d& y_path, double delta) {
     }
     r += detail::jt(sk, frame.Fxy.col(k));
   }
-  if (m > 0) {
-    detail::Psd3 solver;
-    solver.factorize(N);
-    const Eigen::Vector3d lambda = -solver.solve(r);
-    for (int k = 0; k < frame.legs(); ++k) {
-      if (frame.work_idx[static_cast<std::size_t>(k)] == 0) {
-        continue;
-      }
-      const double c = frame.work_n(k);
-      const Eigen::Vector2d sk = detail::lever(frame, k, inv_L);
-      const Eigen::Vector2d F =
-          frame.Fxy.col(k) +
-          c * Eigen::Vector2d(lambda(0) + lambda(2) * sk(0), lambda(1) + lambda(2) * sk(1));
-      // Inside the ellipse Fᵀ G⁻¹ F ≤ c² (G⁻¹ = I − w wᵀ/(1 + ‖w‖²))?
-      const auto w = cx.robot.w.col(k);
-      const double wf = w.dot(F);
-      if (F.squaredNorm() - wf * wf / (1.0 + w.squaredNorm()) > c * c * (1.0 + 1e-12)) {
-        return false;
-      }
-      frame.Fxy.col(k) = F;
-    }
+  if (m > 0 && !fit_static_forces(cx, N, r)) {
+    return false;
   }
   const double gap = summarize(cx, y, delta);
   if (!(gap <= cx.tol) || !(frame.friction.residual <= 1e-12)) {
@@ -358,6 +419,44 @@ bool polish(Context& cx, const Eigen::Vector3d& y_path, double delta) {
   }
   frame.friction.static_feet = m;
   return true;
+}
+
+/// The polish with growing static sets (see solve_coulomb_loaded): thresholds at each candidate
+/// foot's ‖W u‖ in increasing order. Uses frame.work_2n's first row for the ‖W u‖.
+bool try_static_sets(Context& cx, const Eigen::Vector3d& y, double delta) {
+  contact::Frame& frame = cx.frame;
+  const double cap = 1e3 * delta;
+  int candidates = 0;
+  for (int k = 0; k < frame.legs(); ++k) {
+    double r = std::numeric_limits<double>::infinity();
+    if (frame.work_n(k) != 0.0) {
+      const Eigen::Vector2d u = detail::slip(frame, k, detail::lever(frame, k, 1.0 / cx.L), y);
+      r = std::sqrt(u.dot(cx.phi.G(k) * u));
+    }
+    frame.work_2n(0, k) = r;
+    candidates += r <= cap ? 1 : 0;
+  }
+  if (candidates == 0) {
+    return polish(cx, y, delta, -1.0);
+  }
+  double previous = -1.0;
+  for (int j = 0; j < candidates; ++j) {
+    double next = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < frame.legs(); ++k) {
+      const double r = frame.work_2n(0, k);
+      if (r > previous && r < next) {
+        next = r;
+      }
+    }
+    if (!(next <= cap)) {
+      break;
+    }
+    if (polish(cx, y, delta, next)) {
+      return true;
+    }
+    previous = next;
+  }
+  return false;
 }
 
 }  // namespace
@@ -462,7 +561,12 @@ void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
       }
     }
     if (stage_end) {
-      if (delta <= 1e-3 * V && polish(cx, y, delta)) {
+      // A static foot whose force is the fraction t of its limit keeps ‖W u‖ = δ t/√(1 − t²)
+      // on the path (7 δ at t = 0.99), so near a holding limit no fixed threshold separates
+      // static from slowly sliding feet: the candidates are the feet with ‖W u‖ ≤ 10³ δ, and the
+      // static sets tried are the slowest one, two, ... of them (a wrong set fails the polish's
+      // checks); with none, the empty set.
+      if (delta <= 1e-3 * V && try_static_sets(cx, y, delta)) {
         s.converged = true;
         s.unique = true;
         return;

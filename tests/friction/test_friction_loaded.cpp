@@ -207,5 +207,30 @@ TEST(CoulombLoaded, HoldsAtRestBelowTheFrictionLimitAndSlidesAbove) {
   EXPECT_TRUE(c.frame.friction.converged) << c.frame.friction.message;
 }
 
+TEST(CoulombLoaded, TwoGroupsNearTheHoldingLimit) {
+  // A frame of BigANT's tripod on 42° at a gait transition (rounded from a run): the tripod
+  // 0, 2, 4 cannot hold the load alone, so it slides and the other group's feet 3 and 5 stick,
+  // with foot 3's force near its rim; pure translation with both sticking needs more than foot 3
+  // can give, so the body also turns a little. Wrong static sets fail the polish; the right one
+  // certifies.
+  Case c(6, 0);
+  const double q[6][2] = {{-0.35607, 0.2},  {0.078692, 0.2},   {0.24393, 0.2},
+                          {-0.22131, -0.2}, {-0.056069, -0.2}, {0.37869, -0.2}};
+  const double fz[6] = {12.9899, 0.0, 16.8272, 1.94464, 22.0905, 5.78197};
+  const double qd[6] = {-0.026084, -0.023398, -0.026084, -0.023398, -0.026084, -0.023398};
+  for (int k = 0; k < 6; ++k) {
+    c.frame.q.col(k) << q[k][0], q[k][1], -0.1;
+    c.frame.qdot.col(k) << qd[k], 0.0, 0.0;
+    c.frame.Fz(k) = fz[k];
+    c.frame.contact[static_cast<std::size_t>(k)] = fz[k] > 0.0 ? 1 : 0;
+    c.robot.mu(k) = 1.0;
+  }
+  const Vector3d load(-53.6949, -0.00776542, 0.0);
+  solve_coulomb_loaded(c.robot, c.frame, load);
+  ASSERT_TRUE(c.frame.friction.converged) << c.frame.friction.message;
+  EXPECT_LE(balance_residual(c, load), 1e-12);
+  EXPECT_LE(coulomb_gap(c, load), 1e-10);
+}
+
 }  // namespace
 }  // namespace slipwalk::friction

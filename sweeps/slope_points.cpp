@@ -1,0 +1,174 @@
+// slope_progress and stall_slope (thesis §5.2.1, issue 8: "find the slope at which the tripod gait
+// stops making progress"): BigANT's alternating tripod walking straight up a slope (uphill = its
+// heading), composed from a scene exactly as `slipwalk run` would (scene::compose).
+//
+// Progress per gait cycle: the uphill displacement over cycles 2 … n divided by n − 1 (the first
+// cycle starts from the gait's initial pose and is left out). A frame whose Coulomb balance does
+// not exist (the load exceeds what friction holds: the robot slides) makes the run "sliding":
+// the quasi-static model says nothing about how far it slides, so such a run counts as no
+// progress (−∞ for the bisection) and says so in the sliding_frames column.
+//
+// stall_slope bisects on the sign of the progress between lo_deg (progress > 0) and hi_deg
+// (progress ≤ 0) down to tol_deg; one row per probe, every row carrying the final estimate (the
+// bracket's midpoint).
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/csv.hpp"
+#include "scene/scene.hpp"
+#include "sweeps/point_functions.hpp"
+#include "sweeps/point_reader.hpp"
+
+namespace slipwalk::sweeps {
+
+namespace {
+
+struct Walk {
+  std::string law = "viscous";
+  double frequency = 0.1;      ///< Hz
+  long long cycles = 3;        ///< gait cycles simulated (≥ 2)
+  long long per_cycle = 1000;  ///< steps per cycle
+  double com_height = 0.0;     ///< m
+};
+
+struct Probe {
+  double progress = 0.0;        ///< m per cycle, uphill
+  long long sliding = 0;        ///< frames without a balance (Coulomb: the robot slides)
+  long long not_converged = 0;  ///< other frames whose friction solve did not converge
+  long long unsupported = 0;
+};
+
+Walk read_walk(const Reader& r, std::string_view /*kind*/) {
+  Walk w;
+  w.law = r.choice("law", {"viscous", "coulomb"});
+  w.frequency = r.number("frequency", w.frequency, 0.0, 100.0);
+  w.cycles = r.integer("cycles", w.cycles, 2, 1000);
+  w.per_cycle = r.integer("steps_per_cycle", w.per_cycle, 10, 1'000'000);
+  w.com_height = r.number("com_height", w.com_height, 0.0, 10.0, true);
+  return w;
+}
+
+Probe walk_up(const Walk& w, double angle_deg) {
+  const double period = 1.0 / w.frequency;
+  const long long steps = w.cycles * w.per_cycle;
+  const std::string text =
+      "[robot]\nname = \"bigant\"\n[gait]\nkind = \"tripod\"\nfrequency = " +
+      core::format_double(w.frequency) +
+      "\n[run]\nduration = " + core::format_double(period * static_cast<double>(w.cycles)) +
+      "\nsteps = " + std::to_string(steps) + "\n[friction]\nlaw = \"" + w.law +
+      "\"\n[terrain]\nkind = \"slope\"\nangle_deg = " + core::format_double(angle_deg) +
+      "\ncom_height = " + core::format_double(w.com_height) + "\n";
+  const scene::Simulator sim = scene::compose(scene::parse_scene(text, "slope_progress"));
+  double x_after_first = 0.0;
+  double x_end = 0.0;
+  Probe p;
+  const connection::TrajectorySummary summary = sim.run([&](const connection::TrajectoryStep& s) {
+    if (s.n == w.per_cycle) {
+      x_after_first = s.pose.x;  // uphill is +x of the plane (heading 0, start facing +x)
+    }
+    x_end = s.pose.x;
+    const contact::FrictionSummary& f = s.frame.friction;
+    if (!f.converged && f.message.rfind("sliding", 0) == 0) {
+      ++p.sliding;
+    }
+  });
+  p.not_converged = summary.not_converged - p.sliding;
+  p.unsupported = summary.unsupported;
+  p.progress = (x_end - x_after_first) / static_cast<double>(w.cycles - 1);
+  return p;
+}
+
+/// The bisection's view of a probe: sliding counts as no progress at all.
+double signed_progress(const Probe& p) {
+  return p.sliding > 0 ? -std::numeric_limits<double>::infinity() : p.progress;
+}
+
+const std::vector<std::string_view> kProgressKeys = {"law",    "angle_deg",       "frequency",
+                                                     "cycles", "steps_per_cycle", "com_height"};
+const std::vector<std::string_view> kStallKeys = {
+    "law", "lo_deg", "hi_deg", "tol_deg", "frequency", "cycles", "steps_per_cycle", "com_height"};
+
+PointResult run_progress(const Point& point) {
+  const Reader r(point, "slope_progress", kProgressKeys);
+  const Walk w = read_walk(r, "slope_progress");
+  const double angle = r.number("angle_deg", 0.0, 0.0, 89.0, true);
+  const Probe p = walk_up(w, angle);
+  PointResult out;
+  out.rows.push_back(
+      Row{point.id, w.law, angle, p.progress, p.sliding, p.not_converged, p.unsupported});
+  return out;
+}
+
+PointResult run_stall(const Point& point) {
+  const Reader r(point, "stall_slope", kStallKeys);
+  const Walk w = read_walk(r, "stall_slope");
+  double lo = r.number("lo_deg", 0.0, 0.0, 89.0, true);
+  double hi = r.number("hi_deg", 60.0, 0.0, 89.0, true);
+  const double tol = r.number("tol_deg", 0.05, 0.0, 45.0);
+  PointResult out;
+  struct Done {
+    double angle;
+    Probe p;
+  };
+  std::vector<Done> probes;
+  const Probe plo = walk_up(w, lo);
+  const Probe phi = walk_up(w, hi);
+  probes.push_back({lo, plo});
+  probes.push_back({hi, phi});
+  if (!(signed_progress(plo) > 0.0) || signed_progress(phi) > 0.0) {
+    out.failed = true;
+    out.message = "the bracket [lo_deg, hi_deg] does not change the sign of the progress";
+  } else {
+    while (hi - lo > tol) {
+      const double mid = 0.5 * (lo + hi);
+      const Probe pm = walk_up(w, mid);
+      probes.push_back({mid, pm});
+      (signed_progress(pm) > 0.0 ? lo : hi) = mid;
+    }
+  }
+  const double stall = 0.5 * (lo + hi);
+  long long step = 0;
+  for (const Done& d : probes) {
+    out.rows.push_back(Row{point.id, w.law, step++, d.angle, d.p.progress, d.p.sliding,
+                           d.p.not_converged, d.p.unsupported, lo, hi, stall});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<PointFunction> slope_point_functions() {
+  return {
+      {"slope_progress",
+       "§5.2.1: BigANT's tripod straight up a slope, uphill progress per gait cycle (one row)",
+       {"id", "law", "angle_deg", "progress_per_cycle", "sliding_frames", "not_converged_frames",
+        "unsupported_frames"},
+       [](const Point& p) {
+         const Reader r(p, "slope_progress", kProgressKeys);
+         (void)read_walk(r, "slope_progress");
+         (void)r.number("angle_deg", 0.0, 0.0, 89.0, true);
+       },
+       run_progress},
+      {"stall_slope",
+       "§5.2.1: the slope at which BigANT's tripod stops making uphill progress, by bisection "
+       "(one row per probe)",
+       {"id", "law", "step", "angle_deg", "progress_per_cycle", "sliding_frames",
+        "not_converged_frames", "unsupported_frames", "bracket_lo_deg", "bracket_hi_deg",
+        "stall_deg"},
+       [](const Point& p) {
+         const Reader r(p, "stall_slope", kStallKeys);
+         (void)read_walk(r, "stall_slope");
+         const double lo = r.number("lo_deg", 0.0, 0.0, 89.0, true);
+         const double hi = r.number("hi_deg", 60.0, 0.0, 89.0, true);
+         (void)r.number("tol_deg", 0.05, 0.0, 45.0);
+         if (!(lo < hi)) {
+           r.fail("hi_deg", "must be above lo_deg");
+         }
+       },
+       run_stall},
+  };
+}
+
+}  // namespace slipwalk::sweeps
