@@ -102,6 +102,13 @@ SCRIPTS.append("perf_scene")
 SCRIPT_STUDY["perf_scene"] = "scene_effects"
 STUDIES.append("scene_effects")
 WIDE.update(ROBOT_FIGS)
+# §5.2 slopes and stairs (issue 8): Figs. 5.2 and 5.3 from studies/ch5_terrain, in the chapter 5
+# section ([[figure]] part = "5").
+CH5_FIGS = ["fig5_2", "fig5_3"]
+SCRIPTS += CH5_FIGS
+SCRIPT_STUDY.update({name: "ch5_terrain" for name in CH5_FIGS})
+STUDIES.append("ch5_terrain")
+WIDE.update(CH5_FIGS)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -405,11 +412,12 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
     figs_25 = []
     figs_3 = []
     figs_perf = []
+    figs_5 = []
     for fg in ledger.get("figure", []):
         script = fg["script"]
         part = str(fg.get("part", ""))
         target = (figs_25 if part == "2.5" else figs_3 if part == "3" else
-                  figs_perf if part == "performance" else figs)
+                  figs_perf if part == "performance" else figs_5 if part == "5" else figs)
         linked = [by_id[i] for i in fg.get("claims", []) if i in by_id]
         table = ""
         if fg.get("table") and (staging / fg["table"]).is_file():
@@ -466,7 +474,7 @@ def build_html(ledger: dict, results: dict, values: Values, staging: Path, data:
 <style>{CSS}</style></head><body>
 <header><h1>slipwalk — reproducing <i>Efficient Modeling of Multi-legged Locomotion with Slipping</i>{' — quick run' if quick else ''}</h1>
 <div class="sub">Chapter 2: the inchworm crawling model (§2.1–2.5); chapter 3: the multi-legged model (§3.1–3.4, §3.6). Every figure from data, every number from a run; verdicts computed from the claims ledger <code>data/thesis/claims.toml</code>.</div></header>
-<nav><a href="#ch2">Chapter 2</a><a href="#ch2-5">§2.5 realistic swap</a><a href="#ch3">Chapter 3</a><a href="#ledger">Claims ledger</a><a href="#performance">Performance</a><a href="#stability">Stability</a><a href="#provenance">Provenance</a><a href="cost_of_accuracy.html">Cost of accuracy</a></nav>
+<nav><a href="#ch2">Chapter 2</a><a href="#ch2-5">§2.5 realistic swap</a><a href="#ch3">Chapter 3</a><a href="#ch5">Chapter 5</a><a href="#ledger">Claims ledger</a><a href="#performance">Performance</a><a href="#stability">Stability</a><a href="#provenance">Provenance</a><a href="cost_of_accuracy.html">Cost of accuracy</a></nav>
 <main>
 {quick_banner}
 <section id="ch2"><h2>Chapter 2 — inchworm crawling model</h2>
@@ -505,6 +513,13 @@ thesis gives no numbers for the robots of Figs. 3.2–3.4; ours are frame files 
 by a timed study (performance page and cost of accuracy page), not here, and so is the speed
 comparison with MuJoCo as the peer simulator (Fig. 3.13, performance page). Verdicts of chapter 3: {summary3}</p>
 {''.join(figs_3) or "<p>No chapter 3 figures in the ledger.</p>"}
+</section>
+<section id="ch5"><h2>Chapter 5 — slopes and stairs (§5.2)</h2>
+<p>The model of chapter 3 on a constant slope (§5.2.1: the spring support carries Mg cos σ, the
+planar balance carries gravity's component along the slope as a load) and on stairs (§5.2.2: the
+pitch expanded about the stairs' slope, each toe's spring measured from its tread). Synthetic
+runs of BigANT's tripod; the thesis shows no data for them either.</p>
+{''.join(figs_5) or "<p>No chapter 5 figures in the ledger.</p>"}
 </section>
 <section id="ledger"><h2>Claims ledger</h2>
 <p class="small">Every quantitative statement of chapter 2, §2.1–2.5, and of chapter 3, §3.1–3.4 and §3.6. "ours" is
