@@ -119,6 +119,8 @@ robots::Walker make_walker(const Gait& gait) {
           return robots::multipod(g);
         } else if constexpr (std::is_same_v<G, robots::TrotGait>) {
           return robots::quadruped_trot(g);
+        } else if constexpr (std::is_same_v<G, LegTableGait>) {
+          return leg_table_walker(g);
         } else {
           return robots::disk_robot(g);
         }

@@ -23,10 +23,10 @@ using core::InputError;
 /// Every table a scene may hold and the keys each may hold (toml_reader.hpp uses it to suggest).
 const std::vector<TableSchema>& schema() {
   static const std::vector<TableSchema> tables = {
-      {"robot", {"name", "legs", "radius", "stiffness"}},
+      {"robot", {"name", "legs", "radius", "stiffness", "mass", "leg"}},
       {"gait",
        {"kind", "frequency", "steer", "duty", "sweep", "dphi", "roll_amplitude", "yaw_amplitude",
-        "stride", "swing_height"}},
+        "stride", "swing_height", "height", "lift"}},
       {"run", {"duration", "dt", "steps"}},
       {"friction", {"law", "tol", "max_iterations", "w"}},
       {"filter", {"gamma"}},
@@ -113,6 +113,9 @@ std::vector<std::string_view> gaits_of(std::string_view robot) {
   if (robot == "quadruped") {
     return {"trot"};
   }
+  if (robot == "legs") {
+    return {"foot_path"};
+  }
   return {"disk"};
 }
 
@@ -131,7 +134,9 @@ const std::vector<GaitKey>& gait_keys() {
       {"dphi", {"undulation"}, "the undulation gait"},
       {"roll_amplitude", {"undulation"}, "the undulation gait"},
       {"yaw_amplitude", {"undulation"}, "the undulation gait"},
-      {"stride", {"trot"}, "the trot gait"},
+      {"stride", {"trot", "foot_path"}, "the trot and foot_path gaits"},
+      {"height", {"foot_path"}, "the foot_path gait"},
+      {"lift", {"foot_path"}, "the foot_path gait"},
       {"swing_height", {"trot"}, "the trot gait"},
   };
   return keys;
@@ -165,7 +170,8 @@ int read_legs(const TableReader& robot, int value, long long lo, long long hi, b
   return value;
 }
 
-Gait read_gait(const TableReader& robot, const TableReader& gait, const std::string& robot_name) {
+Gait read_gait(const TableReader& robot, const TableReader& gait, const std::string& robot_name,
+               const std::string& path) {
   const std::string kind = gait.choice(gait.required("kind"), "kind", gaits_of(robot_name));
   std::string chosen = "kind = '";
   chosen.append(kind).append("'");
@@ -173,6 +179,9 @@ Gait read_gait(const TableReader& robot, const TableReader& gait, const std::str
     if (std::find(k.kinds.begin(), k.kinds.end(), kind) == k.kinds.end()) {
       gait.forbid(k.key, k.owner, chosen);
     }
+  }
+  if (kind == "foot_path") {
+    return read_leg_table(robot, gait, path, schema());
   }
   if (kind == "tripod") {
     robots::TripodGait g;
@@ -359,7 +368,8 @@ terrain::Terrain read_terrain(const TableReader& t) {
 }  // namespace
 
 const char* gait_kind(const Gait& gait) {
-  constexpr const char* kNames[] = {"tripod", "metachronal", "undulation", "trot", "disk"};
+  constexpr const char* kNames[] = {"tripod", "metachronal", "undulation",
+                                    "trot",   "disk",        "foot_path"};
   return kNames[gait.index()];
 }
 
@@ -377,8 +387,8 @@ Scene parse_scene(std::string_view text, const std::string& path) {
 
   // [robot]: which walker; its legs and radius where it has them.
   const TableReader robot(required_table(doc, "robot", path), schema_of("robot"), path, all);
-  scene.robot =
-      robot.choice(robot.required("name"), "name", {"bigant", "multipod", "quadruped", "disk"});
+  scene.robot = robot.choice(robot.required("name"), "name",
+                             {"bigant", "multipod", "quadruped", "disk", "legs"});
   std::string chosen = "name = '";
   chosen.append(scene.robot).append("'");
   if (scene.robot != "multipod" && scene.robot != "disk") {
@@ -390,11 +400,15 @@ Scene parse_scene(std::string_view text, const std::string& path) {
   if (scene.robot != "multipod") {
     robot.forbid("stiffness", "the multipod robot", chosen);
   }
+  if (scene.robot != "legs") {
+    robot.forbid("mass", "a leg table (name = 'legs')", chosen);
+    robot.forbid("leg", "a leg table (name = 'legs')", chosen);
+  }
 
   // [gait]: the gait of that robot and its parameters.
   const TableReader gait(required_table(doc, "gait", path), schema_of("gait"), path, all);
   scene.gait_origin = gait.origin();
-  scene.gait = read_gait(robot, gait, scene.robot);
+  scene.gait = read_gait(robot, gait, scene.robot, path);
   check_with_factory(scene.gait, robot, gait);
 
   // [run] and the effects.
@@ -459,6 +473,20 @@ nlohmann::json to_json(const Scene& scene) {
         } else if constexpr (std::is_same_v<G, robots::DiskGait>) {
           gait["legs"] = g.legs;
           gait["radius"] = g.radius;
+        } else if constexpr (std::is_same_v<G, LegTableGait>) {
+          gait["stride"] = g.stride;
+          gait["height"] = g.height;
+          gait["lift"] = g.lift;
+          gait["mass"] = g.mass;
+          nlohmann::json legs = nlohmann::json::array();
+          for (const LegSpec& leg : g.legs) {
+            legs.push_back({{"name", leg.name},
+                            {"hip", {leg.hip(0), leg.hip(1), leg.hip(2)}},
+                            {"K", leg.K},
+                            {"mu", leg.mu},
+                            {"phase", leg.phase}});
+          }
+          gait["legs"] = legs;
         }
       },
       scene.gait);

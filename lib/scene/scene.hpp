@@ -5,14 +5,16 @@
 // the simulator once from exactly the named effects.
 //
 //   [robot]                  # required
-//   name = "bigant"          # "bigant" | "multipod" | "quadruped" | "disk"
+//   name = "bigant"          # "bigant" | "multipod" | "quadruped" | "disk" | "legs" (a leg
+//                            # table: mass and [[robot.leg]] tables, gait "foot_path";
+//                            # scene/leg_table.hpp has its keys)
 //   # legs = 6               # multipod: 6, 8, 10, 12; disk: 3 … 1000
 //   # radius = 0.3           # disk only, m
 //   # stiffness = 1000.0     # multipod only, N/m (robots/multipod.hpp)
 //
 //   [gait]                   # required
 //   kind = "tripod"          # bigant: "tripod" | "metachronal"; multipod: "undulation";
-//                            # quadruped: "trot"; disk: "disk"
+//                            # quadruped: "trot"; disk: "disk"; legs: "foot_path"
 //   frequency = 0.1          # Hz, > 0 (default: the gait's, robots/robots.hpp)
 //   steer = 0.0              # tripod only, [−1, 1]
 //   # duty (tripod, trot), sweep (tripod, metachronal), dphi, roll_amplitude, yaw_amplitude
@@ -61,15 +63,16 @@
 
 #include "connection/trajectory.hpp"
 #include "robots/robots.hpp"
+#include "scene/leg_table.hpp"
 #include "terrain/terrain.hpp"
 
 namespace slipwalk::scene {
 
 /// The robot and its gait: one of the built-in walkers of robots/robots.hpp with its options.
 using Gait = std::variant<robots::TripodGait, robots::MetachronalGait, robots::UndulationGait,
-                          robots::TrotGait, robots::DiskGait>;
+                          robots::TrotGait, robots::DiskGait, LegTableGait>;
 
-/// "tripod", "metachronal", "undulation", "trot", "disk".
+/// "tripod", "metachronal", "undulation", "trot", "disk", "foot_path".
 [[nodiscard]] const char* gait_kind(const Gait& gait);
 
 struct FrictionEffect {

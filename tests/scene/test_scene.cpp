@@ -257,8 +257,9 @@ TEST(Scene, ParametersOfEffectsThatAreNotChosen) {
   expect_error(replace(kGood, "steer = -0.5", "steer = -0.5\ndphi = 1"), "8:8",
                "gait.dphi: a parameter of the undulation gait, given with kind "
                "= 'tripod'");
-  expect_error(replace(kGood, "steer = -0.5", "stride = 0.1"), "7:10",
-               "gait.stride: a parameter of the trot gait, given with kind = 'tripod'");
+  expect_error(
+      replace(kGood, "steer = -0.5", "stride = 0.1"), "7:10",
+      "gait.stride: a parameter of the trot and foot_path gaits, given with kind = 'tripod'");
   expect_error(replace(kGood, "name = \"bigant\"", "name = \"bigant\"\nstiffness = 5"), "3:13",
                "robot.stiffness: a parameter of the multipod robot");
   expect_error(replace(kGood, "kind = \"tripod\"", "kind = \"trot\""), "5:8",
