@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "scene/effects.hpp"
+#include "scene/run_writer.hpp"
 #include "scene/scene.hpp"
 
 namespace slipwalk::scene {
@@ -378,6 +379,45 @@ TEST(SceneEffects, NoiseErrors) {
   expect_error(top, "s.toml:1:1", "it belongs in [noise]");
   const std::string residual_elsewhere = scene_text(kViscous, "[filter]\nfile = \"B.csv\"\n");
   expect_error(residual_elsewhere, at(residual_elsewhere, "file", 1), "it belongs in [residual]");
+}
+
+TEST(SceneEffects, RunCsvReportsTheMeasuredAndTheTruePose) {
+  // With [noise] x, y, theta are the measured pose and x_true, y_true, theta_true come last; with
+  // the residual the balance's velocity is in vx_model, vy_model, omega_model.
+  const TempDir tmp;
+  tmp.write("B.csv", residual_csv(0.01));
+  const std::string path = tmp.write(
+      "s.toml", scene_text(kViscous, "[residual]\nfile = \"B.csv\"\n" +
+                                         noise("sigma = 0.01\nsigma_theta = 0.02\nseed = 1")));
+  const Scene scene = read_scene(path);
+  const Simulator sim = compose(scene);
+  const RunResult result = write_run(scene, sim, tmp.dir / "out.csv", {}, nullptr);
+  const std::vector<std::string>& cols = result.columns;
+  ASSERT_GE(cols.size(), 10U);
+  EXPECT_EQ(cols[7], "vx_model");
+  EXPECT_EQ(cols[cols.size() - 3], "x_true");
+  EXPECT_EQ(cols.back(), "theta_true");
+  std::ifstream in(tmp.dir / "out.csv");
+  std::string header;
+  std::string row;
+  std::getline(in, header);
+  std::getline(in, row);
+  std::getline(in, row);  // the second frame (t = dt)
+  std::vector<double> cells;
+  std::size_t start = 0;
+  while (start <= row.size()) {
+    const std::size_t comma = row.find(',', start);
+    cells.push_back(std::stod(row.substr(start, comma - start)));
+    if (comma == std::string::npos) {
+      break;
+    }
+    start = comma + 1;
+  }
+  ASSERT_EQ(cells.size(), cols.size());
+  const std::vector<Frame> frames = run(scene);
+  EXPECT_EQ(cells[1], frames[1].measured.x);
+  EXPECT_EQ(cells[cells.size() - 3], frames[1].pose.x);
+  EXPECT_NE(cells[1], cells[cells.size() - 3]);
 }
 
 }  // namespace
