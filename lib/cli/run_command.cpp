@@ -1,7 +1,7 @@
 // slipwalk run SCENE.toml --out FILE.csv [--progress]: a trajectory of a scene (thesis §3.5;
-// issue 6). The scene is read and checked whole first (bad input: exit 2, nothing written), the
-// simulator composed once (scene/scene.hpp), then one CSV row per frame is written to a temporary
-// file renamed when complete, with a provenance sidecar FILE.json beside it.
+// issues 6 and 8). The scene is read and checked whole first (bad input: exit 2, nothing written),
+// the simulator composed once (scene/scene.hpp), then one CSV row per frame is written to a
+// temporary file renamed when complete, with a provenance sidecar FILE.json beside it.
 //
 // The columns and the sidecar are scene/run_writer.hpp's, shared with the [[scene]] entries of
 // the studies (`slipwalk reproduce`).
@@ -46,8 +46,9 @@ void add_run_command(CLI::App& app) {
   auto cmd = std::make_shared<RunCommand>();
   auto* sub = app.add_subcommand(
       "run",
-      "a trajectory of a scene (thesis §3.5): pose, body velocity and per-leg contact, forces "
-      "and slip, one CSV row per step");
+      "a trajectory of a scene (thesis §3.5; effects §5.2-5.3): pose, body velocity and per-leg "
+      "contact, forces and slip, one CSV row per step; only the effects the scene names are "
+      "simulated");
   sub->add_option("SCENE", cmd->scene_file, "scene file (TOML; format in lib/scene/scene.hpp)")
       ->required();
   sub->add_option("--out", cmd->out,

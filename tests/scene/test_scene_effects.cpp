@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "scene/effects.hpp"
+#include "scene/reference_kernel.hpp"
 #include "scene/run_writer.hpp"
 #include "scene/scene.hpp"
 
@@ -108,6 +109,26 @@ void expect_same_motion(const std::vector<Frame>& a, const std::vector<Frame>& b
     EXPECT_EQ(a[i].pose.theta, b[i].pose.theta) << i;
     EXPECT_EQ(a[i].v_body, b[i].v_body) << i;
     EXPECT_EQ(a[i].Fxy, b[i].Fxy) << i;
+  }
+}
+
+// ---- the benchmark's yardstick ----------------------------------------------------------------
+
+TEST(SceneEffects, HandWrittenKernelGivesTheComposedFlatSceneBitForBit) {
+  // bench_scene and the scene_cost point compare the two for speed; they must compute the same.
+  const Scene scene = parse_scene(scene_text(kViscous), "s.toml");
+  const Simulator sim = compose(scene);
+  const std::vector<Frame> composed = run(scene);
+  std::vector<Frame> hand;
+  connection::TrajectoryData data(sim.walker.robot);
+  (void)run_flat_viscous(sim.walker, sim.options, data, [&](const connection::TrajectoryStep& s) {
+    hand.push_back(
+        {s.pose, s.measured, s.v_body, s.v_model, s.frame.qdot, s.frame.Fz, s.frame.Fxy, s.slip});
+  });
+  expect_same_motion(composed, hand);
+  for (std::size_t i = 0; i < hand.size(); ++i) {
+    EXPECT_EQ(composed[i].slip, hand[i].slip) << i;
+    EXPECT_EQ(composed[i].Fz, hand[i].Fz) << i;
   }
 }
 
