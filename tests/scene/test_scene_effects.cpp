@@ -18,6 +18,7 @@
 #include "scene/reference_kernel.hpp"
 #include "scene/run_writer.hpp"
 #include "scene/scene.hpp"
+#include "support/count_allocations.hpp"
 
 namespace slipwalk::scene {
 namespace {
@@ -439,6 +440,33 @@ TEST(SceneEffects, RunCsvReportsTheMeasuredAndTheTruePose) {
   EXPECT_EQ(cells[1], frames[1].measured.x);
   EXPECT_EQ(cells[cells.size() - 3], frames[1].pose.x);
   EXPECT_NE(cells[1], cells[cells.size() - 3]);
+}
+
+TEST(SceneEffects, StepsDoNotAllocateWithEveryEffectOn) {
+  // Anisotropy, Coulomb, filter, residual, noise and a slope at once: between the second frame
+  // and the last nothing is allocated (the sink itself allocates nothing).
+  const TempDir tmp;
+  tmp.write("B.csv", residual_csv(0.01));
+  for (const std::string& law : {kAnisotropic, std::string("law = \"coulomb\"")}) {
+    const std::string path =
+        tmp.write("s.toml", scene_text(law, "[filter]\n[residual]\nfile = \"B.csv\"\n" +
+                                                noise("sigma = 0.01\nsigma_theta = 0.02") +
+                                                "[terrain]\nkind = \"slope\"\nangle_deg = 5\n"));
+    const Simulator sim = compose(read_scene(path));
+    EXPECT_EQ(sim.kernel_name.find("+filter+residual+noise"), sim.kernel_name.find('+'))
+        << sim.kernel_name;
+    long long first = 0;
+    long long last = -1;
+    const long long steps = sim.options.steps;
+    (void)sim.run([&](const connection::TrajectoryStep& s) {
+      if (s.n == 1) {
+        first = slipwalk::testing::allocation_count();
+      } else if (s.n == steps) {
+        last = slipwalk::testing::allocation_count();
+      }
+    });
+    EXPECT_EQ(last, first) << law;
+  }
 }
 
 }  // namespace
