@@ -28,7 +28,7 @@ CSV = "cost_scaling.csv"
 COLUMNS = ["robot", "N", "method", "eps", "tol", "frames", "repeats", "time_ns", "time_ns_p25",
            "time_ns_p75", "contacts_mean", "iterations_mean", "unconverged"]
 # (key, label, colour, marker), in the order of the legend
-METHODS = [("support", "spring support (Alg. 1)", "C2", "s"),
+METHODS = [("support", "spring support (Newton route, Alg. 1 fallback)", "C2", "s"),
            ("connection", "local connection A (eq. 3.20)", "C4", "D"),
            ("viscous", "viscous-Coulomb balance", "k", "o"),
            ("model", "whole model (support + A + viscous)", "C3", "v"),
@@ -80,6 +80,15 @@ def measure(rows: dict) -> dict:
         v[f"growth_{key}"] = hi["time_ns"] / lo["time_ns"] if lo and hi else None
         v[f"growth_{key}_from"] = min(disk_n)
         v[f"growth_{key}_to"] = max(disk_n)
+    # time = a + b N by least squares over the disk robots: the growth N0 -> N1 is
+    # (a + b N1) / (a + b N0), at most ×2 iff a ≥ (N1 − 2 N0) b (44 b for 3 -> 50 legs).
+    for key, *_ in METHODS:
+        ns = [n for n in disk_n if ("disk", n, key) in rows]
+        if len(ns) >= 2:
+            b, a = np.polyfit(ns, [rows[("disk", n, key)]["time_ns"] for n in ns], 1)
+            v[f"fit_{key}_a_ns"] = float(a)
+            v[f"fit_{key}_b_ns"] = float(b)
+    v["growth_needs_a_over_b"] = float(max(disk_n) - 2 * min(disk_n)) if disk_n else None
     v["disk_contacts_mean"] = [rows[("disk", n, "viscous")]["contacts_mean"]
                                for n in disk_n if ("disk", n, "viscous") in rows]
     v["disk_down_fraction"] = (float(np.mean([rows[("disk", n, "viscous")]["contacts_mean"] / n
@@ -202,6 +211,11 @@ def body(v: dict, rows: dict) -> str:
         cells = "".join(f"<td>{us(v.get(f'disk_{k}_N{n}_ns'))}</td>" for k, *_ in METHODS)
         cm = v["disk_contacts_mean"][i] if i < len(v["disk_contacts_mean"]) else None
         disk_rows.append(f"<tr><td>{n}</td><td>{c.fmt(cm, 3)}</td>{cells}</tr>")
+    fit_rows = "".join(
+        f"<tr><td>{html.escape(LABEL[k])}</td><td>{c.fmt(v.get(f'fit_{k}_a_ns'), 3)}</td>"
+        f"<td>{c.fmt(v.get(f'fit_{k}_b_ns'), 3)}</td>"
+        f"<td>{c.fmt(v[f'fit_{k}_a_ns'] / v[f'fit_{k}_b_ns'], 3) if v.get(f'fit_{k}_b_ns') else '—'}"
+        f"</td></tr>" for k, *_ in METHODS if f"fit_{k}_a_ns" in v)
     support_share = (v["hexapod_support_ns"] / v["hexapod_model_ns"]
                      if v.get("hexapod_support_ns") and v.get("hexapod_model_ns") else None)
     machine = (f"{html.escape(str(v.get('machine_cpu')))}, {v.get('machine_logical_cores')} "
@@ -226,6 +240,14 @@ dominates, as in an interpreted implementation; in compiled code the work per fo
 <b>Machine:</b> {machine}.</p>
 <table class='data'><thead><tr><th>issue 5 target</th><th>target</th><th>ours</th><th></th></tr>
 </thead><tbody>{target_rows}</tbody></table>
+<p class="small">Fits time = a + b·N over the disk robots (ns). A growth of at most ×2 from {n0}
+to {n1} legs needs a ≥ {c.fmt(v.get('growth_needs_a_over_b'), 3)} b: a fixed cost per call of
+{c.fmt(v.get('growth_needs_a_over_b'), 3)} times the cost of one leg. The spring support runs an
+active-set Newton method on its convex potential (a few vectorized passes over the feet, the
+Newton route) and falls back to Alg. 1's path where that does not certify; its pass count grows
+slowly with the feet down.</p>
+<table class='data'><thead><tr><th>stage</th><th>a (ns)</th><th>b (ns per leg)</th><th>a / b</th>
+</tr></thead><tbody>{fit_rows}</tbody></table>
 <p class="small">The hexapod, per frame (median; p25–p75 over repeats; ÷ the viscous-Coulomb
 balance of the same run; mean solver iterations, or spring-support contact changes):</p>
 <table class='data'><thead><tr><th>stage</th><th>CPU time</th><th>p25 – p75</th>

@@ -12,18 +12,20 @@
 // with a_j = (q_y, −q_x, 1) in the unscaled state v = (α, β, z). Reading the contact set off the
 // heights at v⁺ and repeating is the semismooth Newton method on ∇U = 0 (the active-set method for
 // this piecewise quadratic). It starts from the all-feet cell (the least-squares plane of all feet,
-// like §3.3.1's Newton on z*, which also starts from all feet) and usually needs two or three
-// steps: each step is one pass over the feet, four at a time (an AVX2 clone where the CPU has
-// it, else pairs of SSE2 registers: same code, same rounding), with no branch on data, and a
-// 3 × 3 solve by cofactors (one division). Its Newton system is solved in the scaled state
-// (αL, βL, z) of spring_support.cpp.
+// like §3.3.1's Newton on z*, which also starts from all feet); the steps grow slowly with the
+// feet (bench_friction's disk robots: 1.0 at 3 legs, 3.2 at 12, 4.7 at 50, like a bisection of the
+// contact set; a start at z*, tried, took fewer steps but needed the path more often on small
+// robots and was no faster): each step is one pass over the feet, four at a time (an AVX2 clone
+// where the CPU has it, else pairs of SSE2 registers: same operations, hence the same rounding —
+// the clone leaves out FMA for that), with no branch on data, and a 3 × 3 solve by cofactors (one
+// division). Its Newton system is solved in the scaled state (αL, βL, z) of spring_support.cpp.
 //
 // Certificate. Stop when the contact set read off the heights at v (the outputs' convention:
-// h_j < 0 beyond the rounding error of h_j) equals the set the step to v was computed on; then
-// the gradient that pass summed is ∇U(v) itself, and it must be zero to rounding (the balance
-// residual of SupportSummary ≤ 1e-14, or no longer halved by a further refinement step while
-// ≤ 1e-10). The cell's Hessian must be safely definite, λ_min(H̃) > 1e-10 tr(H̃) (checked as
-// 4 det H̃ > 1e-10 tr(H̃)³, since λ_min ≥ det/(tr/2)²): then U is strictly convex around v, the
+// h_j < 0 beyond the rounding error of the heights, Rows::noise) equals the set the step to v was
+// computed on; then the gradient that pass summed is ∇U(v) itself, and it must be zero to rounding
+// (the balance residual of SupportSummary ≤ 1e-14, or no longer halved by a further refinement step
+// while ≤ 1e-10). The cell's Hessian must be safely definite, λ_min(H̃) > 1e-10 tr(H̃) (checked as 4
+// det H̃ > 1e-10 tr(H̃)³, since λ_min ≥ det/(tr/2)²): then U is strictly convex around v, the
 // stationary point is its unique global minimizer, and the path search ends at the same state.
 // Anything else (fewer than three contacts off a line on the way, the CoM outside the support,
 // a cycling contact set — semismooth Newton without a line search is not globally convergent —
@@ -60,17 +62,18 @@ constexpr double kAboveGround = 1e300;
 // the last pass.
 enum Row : int { kY = 0, kMinusX, kQz, kK, kOn, kRows };
 
-// Function multiversioning (GCC on x86-64): an x86-64-v3 (AVX2) clone of support_by_newton beside
-// the portable default, chosen at load time; other compilers and targets get the default only.
+// Function multiversioning (GCC on x86-64): an AVX2 clone of support_by_newton beside the portable
+// default, chosen at load time; other compilers and targets get the default only. Not x86-64-v3:
+// its FMA would contract a·b + c and round differently from the default clone.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define SLIPWALK_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#define SLIPWALK_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define SLIPWALK_CLONES
 #endif
 
 // W feet per step in GCC/Clang vector extensions rather than Eigen arrays, because the per-foot
 // contact test is a lane mask (Eigen 3.4 does not vectorize select()). W = 4 is one AVX register
-// in the x86-64-v3 clone and two SSE2 registers in the default one; the code and hence the
+// in the AVX2 clone and two SSE2 registers in the default one; the code and hence the
 // rounding are the same in both.
 template <int W>
 struct VectorTypes;

@@ -1,7 +1,8 @@
 // Per-frame cost of the spring-support search (thesis §3.3, Alg. 1) for a hexapod and for a
 // 50-legged "centipede", on walking-like frames (feet stepping back and forth, swing feet
 // lifted), and the cost of the convex-potential oracle the tests use (GSL BFGS + Newton) for the
-// same hexapod frames. The 50/6 ratio is read off the two per-frame times of one run.
+// same hexapod frames. The 50/6 ratio is read off the two per-frame times of one run; the
+// *PathOnly rows run Alg. 1 alone (no Newton route) on the same frames.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -56,14 +57,16 @@ Walker walker(int pairs, double half_length, double half_width, double wave, uns
   return w;
 }
 
-void run_support(benchmark::State& state, Walker w) {
+void run_support(benchmark::State& state, Walker w, bool newton = true) {
+  slipwalk::contact::SupportOptions options;
+  options.newton = newton;
   std::size_t i = 0;
   long long changes = 0;
   long long tipping = 0;
   long long calls = 0;
   for (auto _ : state) {
     Frame& f = w.frames[i];
-    slipwalk::contact::spring_support(w.robot, f);
+    slipwalk::contact::spring_support(w.robot, f, options);
     benchmark::DoNotOptimize(f.z);
     changes += f.support.iterations;
     tipping += f.support.status == slipwalk::contact::SupportSummary::Status::kUnsupported ? 1 : 0;
@@ -84,6 +87,17 @@ void BM_SpringSupport50Legs(benchmark::State& state) {
   run_support(state, walker(25, 1.2, 0.15, 0.1, 2));
 }
 BENCHMARK(BM_SpringSupport50Legs);
+
+// The same frames with Alg. 1 only (SupportOptions::newton = false): the Newton route's gain.
+void BM_SpringSupportHexapodPathOnly(benchmark::State& state) {
+  run_support(state, walker(3, 0.25, 0.18, 0.5, 1), false);
+}
+BENCHMARK(BM_SpringSupportHexapodPathOnly);
+
+void BM_SpringSupport50LegsPathOnly(benchmark::State& state) {
+  run_support(state, walker(25, 1.2, 0.15, 0.1, 2), false);
+}
+BENCHMARK(BM_SpringSupport50LegsPathOnly);
 
 void BM_ConvexOracleHexapod(benchmark::State& state) {
   const Walker w = walker(3, 0.25, 0.18, 0.5, 1);
