@@ -26,7 +26,9 @@
 // (the balance residual of SupportSummary ≤ 1e-14, or no longer halved by a further refinement step
 // while ≤ 1e-10). The cell's Hessian must be safely definite, λ_min(H̃) > 1e-10 tr(H̃) (checked as 4
 // det H̃ > 1e-10 tr(H̃)³, since λ_min ≥ det/(tr/2)²): then U is strictly convex around v, the
-// stationary point is its unique global minimizer, and the path search ends at the same state.
+// stationary point is its unique global minimizer, and the path search ends at the same state —
+// provided no foot sits at its plane (within kNearPlane × rounding): such a foot carries nothing
+// and may be all that makes the cell definite, so those frames go to the path too.
 // Anything else (fewer than three contacts off a line on the way, the CoM outside the support,
 // a cycling contact set — semismooth Newton without a line search is not globally convergent —
 // or more than kMaxSteps steps) returns false and the caller runs Alg. 1.
@@ -55,6 +57,11 @@ constexpr int kMaxSteps = 12;
 constexpr double kDefiniteTol = 1e-10;  // λ_min(H̃) / tr(H̃) below this: leave it to the path
 constexpr double kPolished = 1e-14;     // balance residual that needs no refinement
 constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accepted only below this
+// A foot this many times the heights' rounding error (Rows::noise) or closer to its plane at the
+// end may carry nothing at the balance and hold a tilt (a see-saw on a line of contacts with one
+// foot exactly touching): the contact set is then not strictly complementary, the minimizer may
+// not be unique, and the path search decides.
+constexpr double kNearPlane = 1e3;
 // The padding foot (odd N) sits this far above the ground: never in contact, K = 0.
 constexpr double kAboveGround = 1e300;
 
@@ -128,19 +135,20 @@ struct Cell {
   Eigen::Matrix3d H;  // Σ_C K a aᵀ
   Eigen::Vector3d g;  // Σ_C K h a + Mg e_z = (M_x, M_y, Mg − ΣF_z)
   double changes = 0.0;
+  double near = 0.0;  // feet within kNearPlane × the rounding error of their contact plane
 };
 
 // The sums of one pass, per lane.
 template <int W>
 struct Sums {
   using V = typename Lanes<W>::V;
-  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes{};
+  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes{}, near{};
 };
 
 // Feet j … j + W − 1 of a pass at v (see pass()).
 template <bool kAll, int W>
 [[gnu::always_inline]] inline void add_feet(const Rows& R, Eigen::Index j, const Eigen::Vector3d& v,
-                                            double threshold, Sums<W>& s) {
+                                            double threshold, double margin, Sums<W>& s) {
   using L = Lanes<W>;
   using V = typename L::V;
   const V y = L::load(R.in[kY] + j);
@@ -158,6 +166,8 @@ template <bool kAll, int W>
     on = L::select(touching, L::splat(1.0));
     const V d = on - L::load(R.on + j);
     s.changes += d * d;
+    // Feet within `margin` of their plane, either side (h² ≤ margin², no abs needed).
+    s.near += L::select(h * h <= L::splat(margin * margin), L::splat(1.0));
   }
   L::store(R.on + j, on);
   const V wy = w * y;
@@ -180,14 +190,15 @@ template <bool kAll, int W>
 template <bool kAll>
 [[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg) {
   const double threshold = -R.noise(v);
+  const double margin = kNearPlane * R.noise(v);
   Sums<4> s4;
   Sums<2> s2;
   Eigen::Index j = 0;
   for (; j + 4 <= R.cols; j += 4) {
-    add_feet<kAll>(R, j, v, threshold, s4);
+    add_feet<kAll>(R, j, v, threshold, margin, s4);
   }
   if (j < R.cols) {
-    add_feet<kAll>(R, j, v, threshold, s2);
+    add_feet<kAll>(R, j, v, threshold, margin, s2);
   }
   const auto sum = [&s4, &s2](auto Sums<4>::*m4, auto Sums<2>::*m2) {
     return Lanes<4>::sum(s4.*m4) + Lanes<2>::sum(s2.*m2);
@@ -202,6 +213,7 @@ template <bool kAll>
   c.g << sum(&Sums<4>::gy, &Sums<2>::gy), sum(&Sums<4>::gx, &Sums<2>::gx),
       sum(&Sums<4>::gz, &Sums<2>::gz) + Mg;
   c.changes = sum(&Sums<4>::changes, &Sums<2>::changes);
+  c.near = sum(&Sums<4>::near, &Sums<2>::near);
   return c;
 }
 
@@ -300,6 +312,9 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     if (cell.changes != 0.0) {
       last = kInf;
       continue;
+    }
+    if (cell.near != 0.0) {
+      return false;  // not strictly complementary: let Alg. 1 handle the tie
     }
     const double r = residual(cell, Mg, L);
     if (r <= kPolished || (r >= 0.5 * last && r <= kRoundingCap)) {
