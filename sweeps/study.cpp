@@ -201,6 +201,13 @@ SceneJob parse_scene_entry(const toml::table& t, const std::filesystem::path& di
   scene::Scene& sc = job.scene;
   if (nodes.count("law")) {
     const std::string law = text(*nodes["law"], "law", path);
+    if (sc.friction.anisotropic) {
+      // Its w would be a parameter of a law no longer chosen (as in the scene file itself).
+      throw InputError(where["law"],
+                       "law: the scene's law is 'anisotropic' (with w); the law "
+                       "override switches isotropic scenes between viscous and "
+                       "coulomb");
+    }
     if (law == "viscous") {
       sc.friction.law = connection::FrictionLaw::kViscousCoulomb;
     } else if (law == "coulomb") {

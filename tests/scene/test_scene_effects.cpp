@@ -19,6 +19,7 @@
 #include "scene/run_writer.hpp"
 #include "scene/scene.hpp"
 #include "support/count_allocations.hpp"
+#include "sweeps/study.hpp"
 
 namespace slipwalk::scene {
 namespace {
@@ -496,6 +497,26 @@ TEST(SceneEffects, StepsDoNotAllocateWithEveryEffectOn) {
     });
     EXPECT_EQ(last, first) << law;
   }
+}
+
+TEST(SceneEffects, StudyLawOverrideRefusesAnAnisotropicScene) {
+  // A [[scene]] override equals writing the key in the scene file, where law = "coulomb" next to
+  // w is an error; so is the override.
+  const TempDir tmp;
+  std::filesystem::create_directories(tmp.dir / "scenes");
+  tmp.write("scenes/a.toml", scene_text(kAnisotropic));
+  tmp.write(
+      "study.toml",
+      "title = \"t\"\n[[scene]]\nname = \"s\"\nfile = \"scenes/a.toml\"\nlaw = \"coulomb\"\n");
+  try {
+    (void)sweeps::load_study(tmp.dir);
+    ADD_FAILURE() << "no error";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(e.where().find("study.toml:5:7"), std::string::npos) << e.where();
+    EXPECT_NE(std::string(e.what()).find("'anisotropic'"), std::string::npos) << e.what();
+  }
+  tmp.write("study.toml", "title = \"t\"\n[[scene]]\nname = \"s\"\nfile = \"scenes/a.toml\"\n");
+  EXPECT_TRUE(sweeps::load_study(tmp.dir).scenes.at(0).scene.friction.anisotropic);
 }
 
 }  // namespace
