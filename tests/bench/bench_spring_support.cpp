@@ -63,6 +63,7 @@ void run_support(benchmark::State& state, Walker w, bool newton = true) {
   std::size_t i = 0;
   long long changes = 0;
   long long tipping = 0;
+  long long certified = 0;
   long long calls = 0;
   for (auto _ : state) {
     Frame& f = w.frames[i];
@@ -70,12 +71,14 @@ void run_support(benchmark::State& state, Walker w, bool newton = true) {
     benchmark::DoNotOptimize(f.z);
     changes += f.support.iterations;
     tipping += f.support.status == slipwalk::contact::SupportSummary::Status::kUnsupported ? 1 : 0;
+    certified += f.support.route == slipwalk::contact::SupportSummary::Route::kNewton ? 1 : 0;
     ++calls;
     i = (i + 1) % w.frames.size();
   }
   state.counters["legs"] = w.robot.legs();
   state.counters["changes"] = static_cast<double>(changes) / static_cast<double>(calls);
   state.counters["tipping"] = static_cast<double>(tipping) / static_cast<double>(calls);
+  state.counters["newton"] = static_cast<double>(certified) / static_cast<double>(calls);
 }
 
 void BM_SpringSupportHexapod(benchmark::State& state) {
