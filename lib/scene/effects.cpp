@@ -21,9 +21,11 @@ using core::InputError;
 /// Reads a pair [wx, wy] (finite numbers) from an array node.
 Eigen::Vector2d read_pair(const TableReader& t, const toml::node& node) {
   const toml::array* a = node.as_array();
-  t.check(a != nullptr && a->size() == 2, node, "w",
-          std::string("expected a pair [wx, wy], got ") +
-              (a != nullptr ? "an array of " + std::to_string(a->size()) : type_name(node)));
+  if (a == nullptr || a->size() != 2) {
+    t.fail(node, "w",
+           std::string("expected a pair [wx, wy], got ") +
+               (a != nullptr ? "an array of " + std::to_string(a->size()) : type_name(node)));
+  }
   return {t.number(*a->get(0), "w"), t.number(*a->get(1), "w")};
 }
 
@@ -41,8 +43,10 @@ std::string_view trim(std::string_view s) {
 
 Eigen::Matrix2Xd read_anisotropy(const TableReader& friction, const toml::node& node, int legs) {
   const toml::array* a = node.as_array();
-  friction.check(a != nullptr, node, "w",
-                 std::string("expected [wx, wy] or one pair per leg, got ") + type_name(node));
+  if (a == nullptr) {
+    friction.fail(node, "w",
+                  std::string("expected [wx, wy] or one pair per leg, got ") + type_name(node));
+  }
   Eigen::Matrix2Xd w;
   if (!a->empty() && !a->get(0)->is_array()) {
     w = read_pair(friction, node);
@@ -120,8 +124,10 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> parse_residual(std::string_view text,
 ResidualEffect read_residual(const TableReader& residual, const std::string& scene_path, int legs) {
   const toml::node& node = residual.required("file");
   const auto* name = node.as_string();
-  residual.check(name != nullptr, node, "file",
-                 std::string("expected a string (a file name), got ") + type_name(node));
+  if (name == nullptr) {
+    residual.fail(node, "file",
+                  std::string("expected a string (a file name), got ") + type_name(node));
+  }
   std::filesystem::path path(name->get());
   if (path.is_relative()) {
     path = std::filesystem::path(scene_path).parent_path() / path;

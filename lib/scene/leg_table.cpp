@@ -94,8 +94,9 @@ LegTableGait read_leg_table(const TableReader& robot, const TableReader& gait,
                            "missing required [[robot.leg]] tables (one per leg) for name = 'legs'");
   }
   const toml::array* list = legs->as_array();
-  robot.check(list != nullptr && list->is_array_of_tables(), *legs, "leg",
-              std::string("expected [[robot.leg]] tables, got ") + type_name(*legs));
+  if (list == nullptr || !list->is_array_of_tables()) {
+    robot.fail(*legs, "leg", std::string("expected [[robot.leg]] tables, got ") + type_name(*legs));
+  }
   robot.check(list->size() >= 3 && list->size() <= 1000, *legs, "leg",
               "needs 3 to 1000 legs, got " + std::to_string(list->size()));
   for (const toml::node& node : *list) {
@@ -103,8 +104,9 @@ LegTableGait read_leg_table(const TableReader& robot, const TableReader& gait,
     LegSpec spec;
     if (const toml::node* n = leg.find("name")) {
       const auto* s = n->as_string();
-      leg.check(s != nullptr && !s->get().empty(), *n, "name",
-                std::string("expected a non-empty string, got ") + type_name(*n));
+      if (s == nullptr || s->get().empty()) {
+        leg.fail(*n, "name", std::string("expected a non-empty string, got ") + type_name(*n));
+      }
       for (const LegSpec& other : g.legs) {
         leg.check(other.name != s->get(), *n, "name", "'" + s->get() + "' names two legs");
       }
@@ -114,9 +116,12 @@ LegTableGait read_leg_table(const TableReader& robot, const TableReader& gait,
     }
     const toml::node& hip = leg.required("hip");
     const toml::array* xyz = hip.as_array();
-    leg.check(xyz != nullptr && xyz->size() == 3, hip, "hip",
-              std::string("expected [x, y, z] in m, got ") +
-                  (xyz != nullptr ? "an array of " + std::to_string(xyz->size()) : type_name(hip)));
+    if (xyz == nullptr || xyz->size() != 3) {
+      leg.fail(
+          hip, "hip",
+          std::string("expected [x, y, z] in m, got ") +
+              (xyz != nullptr ? "an array of " + std::to_string(xyz->size()) : type_name(hip)));
+    }
     for (int i = 0; i < 3; ++i) {
       spec.hip(i) = leg.number(*xyz->get(static_cast<std::size_t>(i)), "hip");
     }

@@ -170,6 +170,13 @@ void TableReader::check(bool ok, const toml::node& node, std::string_view key,
   }
 }
 
+void TableReader::fail(const toml::node& node, std::string_view key,
+                       const std::string& what) const {
+  std::string message = where(key);
+  message.append(": ").append(what);
+  throw core::InputError(origin(node), message);
+}
+
 void TableReader::forbid(std::string_view key, std::string_view owner,
                          std::string_view chosen) const {
   if (const toml::node* node = find(key)) {

@@ -55,6 +55,9 @@ class TableReader {
 
   /// Throws "<table>.<key>: <what>" at the node unless ok.
   void check(bool ok, const toml::node& node, std::string_view key, const std::string& what) const;
+  /// Throws "<table>.<key>: <what>" at the node (check(false, ...) that says so to the compiler).
+  [[noreturn]] void fail(const toml::node& node, std::string_view key,
+                         const std::string& what) const;
   /// Throws if `key` is present: it is a parameter of an effect (or a variant) not chosen here;
   /// `owner` says whose ("the coulomb law", "the multipod and disk robots").
   void forbid(std::string_view key, std::string_view owner, std::string_view chosen) const;
