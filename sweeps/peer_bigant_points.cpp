@@ -4,7 +4,14 @@
 //                Coulomb, connection::integrate) and in MuJoCo (lib/peers/mujoco/bigant_peer: a
 //                plate chassis, feet on x/y/z slides driven by position actuators along the same
 //                foot trajectories); one row per sample time and source, x, y, θ relative to the
-//                start, and for MuJoCo the tracking RMSE of the feet per axis
+//                start, and for MuJoCo the tracking RMSE of the feet per axis and, per leg L
+//                (contact_L, Fz_L, Fx_L, Fy_L, slip_x_L, slip_y_L, as a scene run's columns,
+//                scene/run_writer.hpp), MuJoCo's contact flag, the normal and planar forces of
+//                the floor on the foot (mj_contactForce turned from the contact frame to the
+//                world, planar parts in the chassis' yaw frame) and the foot centre's velocity
+//                over the floor in that frame (mj_objectVelocity of the foot geom); with the
+//                contacts, of the physics step just taken (the state h before the sample's pose).
+//                Our rows leave the per-leg columns NaN (the ch3_robots scene runs have ours).
 //
 // Our leg stiffness defaults to the MuJoCo z actuator's kp (K = kp_z, key K): MuJoCo's z slide
 // with target q_z is our leg spring with rest point q_z (eq. 3.7), so matching them compares the
@@ -99,34 +106,48 @@ robots::Walker walker(const Inputs& in) {
   return w;
 }
 
-const std::vector<std::string> kColumns = {"id",
-                                           "gait",
-                                           "source",
-                                           "label",
-                                           "mu",
-                                           "timestep",
-                                           "solref_timeconst",
-                                           "solref_dampratio",
-                                           "kp_xy",
-                                           "kp_z",
-                                           "K",
-                                           "lead",
-                                           "t",
-                                           "x",
-                                           "y",
-                                           "theta",
-                                           "z",
-                                           "contacts",
-                                           "Fz_sum",
-                                           "rmse_x",
-                                           "rmse_y",
-                                           "rmse_z",
-                                           "rmse_z_swing",
-                                           "rmse_xy_foot_max",
-                                           "mean_contacts",
-                                           "max_Fz_error",
-                                           "peer",
-                                           "message"};
+const std::vector<std::string> kBaseColumns = {"id",
+                                               "gait",
+                                               "source",
+                                               "label",
+                                               "mu",
+                                               "timestep",
+                                               "solref_timeconst",
+                                               "solref_dampratio",
+                                               "kp_xy",
+                                               "kp_z",
+                                               "K",
+                                               "lead",
+                                               "t",
+                                               "x",
+                                               "y",
+                                               "theta",
+                                               "z",
+                                               "contacts",
+                                               "Fz_sum",
+                                               "rmse_x",
+                                               "rmse_y",
+                                               "rmse_z",
+                                               "rmse_z_swing",
+                                               "rmse_xy_foot_max",
+                                               "mean_contacts",
+                                               "max_Fz_error",
+                                               "peer",
+                                               "message"};
+constexpr std::size_t kMessage = 27;  // index of "message"; per-leg columns follow it
+const std::vector<std::string_view> kLegColumns = {"contact_", "Fz_",     "Fx_",
+                                                   "Fy_",      "slip_x_", "slip_y_"};
+
+/// The base columns, then kLegColumns for each of BigANT's legs (both gaits name them alike).
+std::vector<std::string> columns() {
+  std::vector<std::string> out = kBaseColumns;
+  for (const std::string& leg : robots::bigant_tripod().leg_names) {
+    for (std::string_view c : kLegColumns) {
+      out.push_back(std::string(c) + leg);
+    }
+  }
+  return out;
+}
 
 Row row(const Point& point, const Inputs& in, const std::string& source, double t,
         const core::Pose2& pose, double z, long long contacts, double Fz_sum) {
@@ -160,6 +181,25 @@ Row row(const Point& point, const Inputs& in, const std::string& source, double 
              std::string()};
 }
 
+/// Appends the per-leg columns as NaN: our rows, or MuJoCo's when it was not run.
+void append_nan_legs(Row& r, int legs) {
+  r.insert(r.end(), kLegColumns.size() * static_cast<std::size_t>(legs), Cell{kNaN});
+}
+
+#ifdef SLIPWALK_HAVE_MUJOCO
+/// Appends MuJoCo's per-leg columns from `data` (bigant_read_legs), in kLegColumns' order.
+void append_mujoco_legs(Row& r, const peer::BigAntData& data) {
+  for (Eigen::Index k = 0; k < data.Fz.size(); ++k) {
+    r.emplace_back(static_cast<long long>(data.contact[static_cast<std::size_t>(k)] != 0));
+    r.emplace_back(data.Fz(k));
+    r.emplace_back(data.Fxy(0, k));
+    r.emplace_back(data.Fxy(1, k));
+    r.emplace_back(data.slip(0, k));
+    r.emplace_back(data.slip(1, k));
+  }
+}
+#endif
+
 /// Our model along the gait, from the origin, K and μ as the point says; a row every sample.
 template <class Law>
 void run_ours(const Point& point, const Inputs& in, const robots::Walker& w, const Law& law,
@@ -182,11 +222,12 @@ void run_ours(const Point& point, const Inputs& in, const robots::Walker& w, con
           down += c != 0 ? 1 : 0;
         }
         out.rows.push_back(row(point, in, source, s.t, s.pose, s.frame.z, down, s.frame.Fz.sum()));
+        append_nan_legs(out.rows.back(), robot.legs());
       });
   if (!summary.message.empty()) {
     for (Row& r : out.rows) {
       if (std::get<std::string>(r[2]) == source) {
-        r.back() = summary.message;
+        r[kMessage] = summary.message;
       }
     }
   }
@@ -227,6 +268,7 @@ PointResult run(const Point& point) {
   const auto summary = peer::bigant_drive(
       model, data, w.feet, f.z, f.alpha, f.beta, options, [&](const peer::BigAntSample& s) {
         out.rows.push_back(row(point, in, "mujoco", s.t, s.pose, s.z, s.contacts, s.Fz_sum));
+        append_mujoco_legs(out.rows.back(), data);
       });
   const Eigen::Vector3d rmse = summary.tracking.rmse();
   const Eigen::Matrix3Xd per_foot = summary.tracking.rmse_per_foot();
@@ -252,9 +294,10 @@ PointResult run(const Point& point) {
   if (out.rows.empty()) {  // MuJoCo only was asked for: one row that says why there is none
     out.rows.push_back(
         row(point, in, "mujoco", kNaN, core::Pose2{kNaN, kNaN, kNaN}, kNaN, -1, kNaN));
+    append_nan_legs(out.rows.back(), w.robot.legs());
   }
   for (Row& r : out.rows) {
-    r.back() = message;
+    r[kMessage] = message;
   }
 #endif
   return out;
@@ -267,7 +310,7 @@ PointFunction peer_bigant_point_function() {
           "§3.5.4, Fig. 3.14: BigANT along a gait in our model (viscous-Coulomb, Coulomb) and in "
           "MuJoCo driven by the same foot trajectories (one row per sample and source; MuJoCo's "
           "rows carry the feet's tracking RMSE)",
-          kColumns, [](const Point& p) { (void)read(p); }, run};
+          columns(), [](const Point& p) { (void)read(p); }, run};
 }
 
 }  // namespace slipwalk::sweeps

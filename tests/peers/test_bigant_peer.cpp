@@ -174,7 +174,95 @@ TEST(BigAntPeer, StandingStillTheFeetCarryMgAsOurSpringSupportShares) {
     // (about 0.7 mm at 5 ms for the tripod's load): the chassis sits that much lower than ours.
     EXPECT_LT(bigant_height(data), ours.z) << w.name;
     EXPECT_GT(bigant_height(data), ours.z - 2e-3) << w.name;
+    // At rest the planar forces of the floor on the feet balance (nothing else acts sideways on
+    // the robot) and no foot moves over the floor.
+    EXPECT_LT(data.Fxy.rowwise().sum().norm(), 1e-3 * Mg) << w.name;
+    EXPECT_LT(data.slip.cwiseAbs().maxCoeff(), 1e-3) << w.name;
   }
+#endif
+}
+
+TEST(BigAntPeer, FootForcesOpposeSlipInsideTheFrictionCone) {
+  SKIP_WITHOUT_MUJOCO();
+#ifdef SLIPWALK_HAVE_MUJOCO
+  // The metachronal gait slips most (§3.5.1.5). Oracles for the per-leg columns: friction
+  // dissipates, so a slipping foot's planar force points against its slip (F·u < 0, which also
+  // fixes the sign of the contact frame's turn into the world), and MuJoCo's forces lie in its
+  // cone, |F_xy| ≤ μ F_z (pyramidal: |f_t1| + |f_t2| ≤ μ f_n); a foot without contact carries
+  // nothing.
+  const robots::Walker w = robots::bigant_metachronal();
+  const BigAntPeerSpec spec = study_spec(w);
+  const BigAntModel model(spec);
+  BigAntData data(model);
+  const contact::Frame start = our_support(w, spec.kp_z, 0.0);
+  BigAntDriveOptions options;
+  options.duration = 10.0;
+  options.sample = 0.02;
+  int slipping = 0, against = 0;
+  (void)bigant_drive(
+      model, data, w.feet, start.z, start.alpha, start.beta, options, [&](const BigAntSample&) {
+        for (int k = 0; k < 6; ++k) {
+          const Eigen::Vector2d F = data.Fxy.col(k), u = data.slip.col(k);
+          if (data.contact[static_cast<std::size_t>(k)] == 0) {
+            EXPECT_EQ(F.norm(), 0.0);
+            EXPECT_EQ(data.Fz(k), 0.0);
+            continue;
+          }
+          EXPECT_LE(F.norm(),
+                    spec.mu[static_cast<std::size_t>(k)] * data.Fz(k) * (1.0 + 1e-6) + 1e-9);
+          if (u.norm() > 0.005 && data.Fz(k) > 0.05 * w.robot.Mg) {
+            ++slipping;
+            against += F.dot(u) < 0.0 ? 1 : 0;
+          }
+        }
+      });
+  EXPECT_GT(slipping, 20);  // not vacuous: the gait makes feet slip
+  EXPECT_EQ(against, slipping);
+#endif
+}
+
+TEST(BigAntPeer, FootSlipIsTheFootsDisplacementOverAStep) {
+  SKIP_WITHOUT_MUJOCO();
+#ifdef SLIPWALK_HAVE_MUJOCO
+  // Second route for the slip columns: MuJoCo's Euler step moves positions by h times the new
+  // velocities, so a foot geom's displacement over one step, turned into the yaw frame, is the
+  // slip that bigant_read_legs gives after the step (up to the chassis' turn within the step).
+  // Checked every 0.1 s over half a cycle, the targets held where the drive left them.
+  const robots::Walker w = robots::bigant_tripod();
+  const BigAntPeerSpec spec = study_spec(w);
+  const BigAntModel model(spec);
+  BigAntData data(model);
+  const contact::Frame start = our_support(w, spec.kp_z, 0.0);
+  const mjModel* m = model.mj();
+  mjData* d = data.mj();
+  const double h = m->opt.timestep;
+  double fastest = 0.0;
+  for (int i = 1; i <= 50; ++i) {
+    BigAntDriveOptions options;
+    options.duration = 0.1 * i;
+    options.sample = options.duration;
+    (void)bigant_drive(model, data, w.feet, start.z, start.alpha, start.beta, options, {});
+    mj_forward(m, d);
+    Eigen::Matrix2Xd before(2, 6);
+    for (int k = 0; k < 6; ++k) {
+      const int g = model.foot_geom[static_cast<std::size_t>(k)];
+      before.col(k) << d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1];
+    }
+    mj_step(m, d);
+    mj_forward(m, d);
+    bigant_read_legs(model, data);
+    const double yaw = bigant_pose(data).theta;
+    for (int k = 0; k < 6; ++k) {
+      const int g = model.foot_geom[static_cast<std::size_t>(k)];
+      const Eigen::Vector2d dw((d->geom_xpos[3 * g] - before(0, k)) / h,
+                               (d->geom_xpos[3 * g + 1] - before(1, k)) / h);
+      const Eigen::Vector2d body(std::cos(yaw) * dw(0) + std::sin(yaw) * dw(1),
+                                 -std::sin(yaw) * dw(0) + std::cos(yaw) * dw(1));
+      EXPECT_LT((body - data.slip.col(k)).norm(), 1e-4) << "t " << 0.1 * i << " leg " << k;
+      fastest = std::max(fastest, body.norm());
+    }
+  }
+  EXPECT_GT(fastest, 0.01);  // swinging feet move: the comparison is not of zeros
 #endif
 }
 
@@ -252,6 +340,18 @@ TEST(BigAntPeer, PointGivesRowsOfEverySource) {
       mujoco += source == "mujoco" ? 1 : 0;
       if (source == "mujoco") {
         EXPECT_LT(std::get<double>(row[col("rmse_x")]), 0.01);
+        // The per-leg columns add up to the row's totals.
+        double Fz = 0.0;
+        long long down = 0;
+        for (const std::string& leg : robots::bigant_tripod().leg_names) {
+          Fz += std::get<double>(row[col("Fz_" + leg)]);
+          down += std::get<long long>(row[col("contact_" + leg)]);
+          EXPECT_TRUE(std::isfinite(std::get<double>(row[col("slip_x_" + leg)])));
+        }
+        EXPECT_NEAR(Fz, std::get<double>(row[col("Fz_sum")]), 1e-9);
+        EXPECT_EQ(down, std::get<long long>(row[col("contacts")]));
+      } else {
+        EXPECT_TRUE(std::isnan(std::get<double>(row[col("Fx_HL")])));
       }
     }
     EXPECT_EQ(ours, 2 * 3);  // t = 0, 0.5, 1 for both laws
@@ -259,7 +359,7 @@ TEST(BigAntPeer, PointGivesRowsOfEverySource) {
     EXPECT_EQ(mujoco, 3);
 #else
     EXPECT_EQ(mujoco, 0);
-    EXPECT_NE(std::get<std::string>(r.rows.front().back()).find("without MuJoCo"),
+    EXPECT_NE(std::get<std::string>(r.rows.front()[col("message")]).find("without MuJoCo"),
               std::string::npos);
 #endif
   }

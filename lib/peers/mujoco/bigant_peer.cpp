@@ -28,7 +28,9 @@ BigAntModel::BigAntModel(BigAntPeerSpec spec) : spec_(std::move(spec)) {
   leg_of_geom.assign(static_cast<std::size_t>(model_->ngeom), -1);
   for (int k = 0; k < n; ++k) {
     const std::string foot = spec_.leg_names[static_cast<std::size_t>(k)] + "_foot";
-    leg_of_geom[static_cast<std::size_t>(mj_name2id(model_, mjOBJ_GEOM, foot.c_str()))] = k;
+    const int geom = mj_name2id(model_, mjOBJ_GEOM, foot.c_str());
+    leg_of_geom[static_cast<std::size_t>(geom)] = k;
+    foot_geom.push_back(geom);
   }
 }
 
@@ -40,7 +42,9 @@ BigAntData::BigAntData(const BigAntModel& model)
       targets(Eigen::Matrix3Xd::Zero(3, model.legs())),
       slides(Eigen::Matrix3Xd::Zero(3, model.legs())),
       Fz(Eigen::VectorXd::Zero(model.legs())),
-      contact(static_cast<std::size_t>(model.legs()), 0) {
+      contact(static_cast<std::size_t>(model.legs()), 0),
+      Fxy(Eigen::Matrix2Xd::Zero(2, model.legs())),
+      slip(Eigen::Matrix2Xd::Zero(2, model.legs())) {
   data_ = mj_makeData(model.mj());
   if (data_ == nullptr) {
     throw core::ComputationError("MuJoCo: mj_makeData failed");
@@ -108,7 +112,11 @@ void bigant_read_legs(const BigAntModel& model, BigAntData& data) {
     data.slides.col(k) << d->qpos[p], d->qpos[p + 1], d->qpos[p + 2];
   }
   data.Fz.setZero();
+  data.Fxy.setZero();
   std::fill(data.contact.begin(), data.contact.end(), 0);
+  // World → chassis yaw frame (the planar body frame of our model's forces and slip).
+  const double yaw = bigant_pose(data).theta;
+  const double c = std::cos(yaw), s = std::sin(yaw);
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& con = d->contact[i];
     int k = model.leg_of_geom[static_cast<std::size_t>(con.geom2)];
@@ -124,6 +132,23 @@ void bigant_read_legs(const BigAntModel& model, BigAntData& data) {
     // horizontal, so its vertical part is f[0] |n_z|.
     data.Fz(k) += f[0] * std::abs(con.frame[2]);
     data.contact[static_cast<std::size_t>(k)] = 1;
+    // f[0..2] in the contact frame (rows of con.frame: normal, two tangents) is the force geom1
+    // exerts on geom2 (the normal points from geom1 to geom2): world force = frameᵀ f, negated
+    // when the foot is geom1.
+    const double sign = model.leg_of_geom[static_cast<std::size_t>(con.geom2)] == k ? 1.0 : -1.0;
+    double fw[2] = {0.0, 0.0};
+    for (int a = 0; a < 2; ++a) {
+      for (int r = 0; r < 3; ++r) {
+        fw[a] += con.frame[3 * r + a] * f[r];
+      }
+    }
+    data.Fxy(0, k) += sign * (c * fw[0] + s * fw[1]);
+    data.Fxy(1, k) += sign * (-s * fw[0] + c * fw[1]);
+  }
+  for (int k = 0; k < model.legs(); ++k) {
+    mjtNum v[6];  // (angular, linear) at the geom's centre, world axes
+    mj_objectVelocity(m, d, mjOBJ_GEOM, model.foot_geom[static_cast<std::size_t>(k)], v, 0);
+    data.slip.col(k) << c * v[3] + s * v[4], -s * v[3] + c * v[4];
   }
 }
 

@@ -33,6 +33,7 @@ class BigAntModel {
   std::vector<int> qpos_leg;     ///< (N) qpos address of each leg's x slide; y, z follow
   std::vector<int> qvel_leg;     ///< (N) qvel address of each leg's x slide; y, z follow
   std::vector<int> leg_of_geom;  ///< (ngeom) leg index of a foot geom, −1 for other geoms
+  std::vector<int> foot_geom;    ///< (N) geom id of each leg's foot
 
  private:
   BigAntPeerSpec spec_;
@@ -57,6 +58,13 @@ class BigAntData {
   Eigen::Matrix3Xd slides;    ///< (3 x N) slide coordinates: foot centre − nominal, body frame, m
   Eigen::VectorXd Fz;         ///< (N) normal force of the floor on each foot, N
   std::vector<char> contact;  ///< (N) 1 if MuJoCo has a contact at the foot
+  /// (2 x N) planar force of the floor on each foot (Σ over its contacts of mj_contactForce
+  /// rotated from the contact frame to the world), in the chassis' yaw frame, N — the columns
+  /// Fx_L, Fy_L of a scene run (scene/run_writer.hpp)
+  Eigen::Matrix2Xd Fxy;
+  /// (2 x N) planar velocity of each foot's centre over the floor (mj_objectVelocity of the foot
+  /// geom, world axes) in the chassis' yaw frame, m/s: the slip velocity while it has contact
+  Eigen::Matrix2Xd slip;
 
  private:
   mjData_* data_ = nullptr;
@@ -72,8 +80,9 @@ void bigant_place(const BigAntModel& model, BigAntData& data, double z, double a
 /// The chassis origin's height above the foot-centre plane, m.
 [[nodiscard]] double bigant_height(const BigAntData& data);
 
-/// data.slides from qpos; data.Fz, data.contact from MuJoCo's contacts (needs contacts computed:
-/// after mj_forward, or after mj_step for the state the step started from).
+/// data.slides from qpos; data.Fz, data.contact, data.Fxy from MuJoCo's contacts and data.slip
+/// from its body velocities (need contacts and cvel computed: after mj_forward, or after mj_step
+/// for the state the step started from).
 void bigant_read_legs(const BigAntModel& model, BigAntData& data);
 
 struct BigAntDriveOptions {
