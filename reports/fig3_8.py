@@ -11,6 +11,14 @@ contact: with the Coulomb run generating the data this is the step of classical 
 the line |F_xy|/F_z = μ|u| of its ansatz (eq. 3.19). The thesis' panel B is F/T data; ours shows
 what each law would put there. Also the slip-velocity percentiles the thesis quotes (5 %, 95 %
 of v_x of the feet in contact).
+
+MuJoCo's BigANT driven by the same feet stands in, labelled so, for the thesis' measured robot
+(DATA/ch3_peer/fig3_14.csv, metachronal base run; issue 7): red in (B) are its feet in contact
+carrying at least 2 % of Mg (|F_xy|/F_z of the floor's force from its contacts against the foot
+centre's speed over the floor), and its slip percentiles and feet down go to the values. Without
+that file (a build without MuJoCo) the red points are skipped and the title says so. MuJoCo shows
+no step: its friction is a soft (regularized) constraint, so its near-massless feet creep at a
+speed that grows with the planar force, well inside the cone (the values' mujoco_fit).
 """
 from __future__ import annotations
 
@@ -97,6 +105,55 @@ def main():
         float(p) for p in np.percentile(1e3 * sx, [2.5, 97.5]))
     values["slip_speed_median_mm_s"] = float(np.median(1e3 * speed))
 
+    # MuJoCo as measured: its own contacts, forces and slip, over the part of our run it covers.
+    mj = rb.mujoco_until(rb.mujoco_as_measured(args.data, "metachronal"), k.time[-1])
+    feet = rb.mujoco_feet(mj, k.legs)
+    values["mujoco_as_measured"] = feet is not None
+    if feet is not None:
+        mdown = np.stack([feet[leg]["contact"] > 0 for leg in k.legs], axis=1)
+        mfz = np.stack([feet[leg]["Fz"] for leg in k.legs], axis=1)
+        mw = np.sum(mfz, axis=1, keepdims=True)
+        loaded = mdown & (mfz > 0.02 * mw)
+        msx = np.stack([feet[leg]["slip_x"] for leg in k.legs], axis=1)[mdown]
+        msp = np.hypot(np.stack([feet[leg]["slip_x"] for leg in k.legs], axis=1),
+                       np.stack([feet[leg]["slip_y"] for leg in k.legs], axis=1))[loaded]
+        mratio = np.hypot(np.stack([feet[leg]["Fx"] for leg in k.legs], axis=1),
+                          np.stack([feet[leg]["Fy"] for leg in k.legs], axis=1))[loaded] \
+            / mfz[loaded]
+        a.plot(1e3 * msp, mratio, ".", ms=3, color=rb.MEASURED, alpha=0.6,
+               label=rb.MEASURED_LABEL)
+        a.legend(fontsize=7, loc="lower right")
+        a.set_title("(B) Coulomb run (blue): a step at μ = 1; red: MuJoCo")
+        # MuJoCo's friction is a soft constraint: the force grows with the creep speed
+        mfit = c.linfit(msp, mratio)
+        values["mujoco_fit"] = mfit
+        values["mujoco_slip_x_p5_mm_s"], values["mujoco_slip_x_p95_mm_s"] = (
+            float(p) for p in np.percentile(1e3 * msx, [5, 95]))
+        values["mujoco_feet_down_mean"] = float(mdown.sum(axis=1).mean())
+        values["mujoco_duty_mean"] = float(mdown.mean())
+        slipping_m = msp > 5e-3  # m/s: MuJoCo's soft contacts creep; 5 mm/s is a slip
+        values["mujoco_ratio_slipping_median"] = (float(np.median(mratio[slipping_m]))
+                                                  if np.any(slipping_m) else None)
+        values["mujoco_slip_note"] = (
+            f"{rb.MEASURED_LABEL}: ({values['mujoco_slip_x_p5_mm_s']:.1f}, "
+            f"{values['mujoco_slip_x_p95_mm_s']:.1f}) mm/s over {mj['t'][-1]:.0f} s.")
+        values["mujoco_step_note"] = (
+            f"{rb.MEASURED_LABEL}: feet slipping faster than 5 mm/s have median |F_xy|/F_z = "
+            + (f"{values['mujoco_ratio_slipping_median']:.3g}"
+               if values["mujoco_ratio_slipping_median"] is not None else "— (none)")
+            + " (μ = 1)"
+            + (f"; a line fits its feet down, |F_xy|/F_z = {mfit['k']:.3g} s/m·|u| "
+               f"{'+' if mfit['b'] >= 0 else '−'} {abs(mfit['b']):.2g} (R² = {mfit['r2']:.2f}): "
+               "MuJoCo's soft friction constraint "
+               "lets feet creep at a speed that grows with the force, not the step"
+               if mfit["k"] is not None and mfit["r2"] is not None else "") + ".")
+        values["mujoco_duty_note"] = (
+            f"{rb.MEASURED_LABEL}: {values['mujoco_feet_down_mean']:.3g} feet down on average, "
+            f"duty {values['mujoco_duty_mean']:.3g}.")
+    else:
+        for key in ("mujoco_slip_note", "mujoco_step_note", "mujoco_duty_note"):
+            values[key] = rb.MUJOCO_MISSING + "."
+
     # (B') viscous-Coulomb: a line of slope mu in its own units.
     _, vx_, vy_, vratio = contact_slip(v)
     vspeed = np.hypot(vx_, vy_)
@@ -117,7 +174,11 @@ def main():
         float(p) for p in np.percentile(1e3 * vx_, [5, 95]))
     fig.suptitle("BigANT, metachronal gait, synthetic; slip v_x of feet down, 5–95 %: "
                  f"({values['slip_x_p5_mm_s']:.1f}, {values['slip_x_p95_mm_s']:.1f}) mm/s "
-                 "(Coulomb run)", fontsize=10)
+                 "(Coulomb run)" + (
+                     f", ({values['mujoco_slip_x_p5_mm_s']:.1f}, "
+                     f"{values['mujoco_slip_x_p95_mm_s']:.1f}) mm/s (MuJoCo as measured, driven "
+                     "by the same feet)" if feet is not None else "; " + rb.MUJOCO_MISSING),
+                 fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.94))
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

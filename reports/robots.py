@@ -63,10 +63,25 @@ MEASURED = "tab:red"
 MEASURED_LABEL = "MuJoCo (as measured)"
 
 
+LEG_COLUMNS = ("contact", "Fz", "Fx", "Fy", "slip_x", "slip_y")
+MUJOCO_MISSING = ("no MuJoCo data (a build without MuJoCo, `slipwalk reproduce ch3_peer` not run, "
+                  "or a fig3_14.csv without per-leg columns): the MuJoCo overlay is skipped")
+
+
+def body_velocity(t, x, y, theta) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """vx, vy (body frame) and omega by central differences of sampled poses."""
+    dx, dy = np.gradient(x, t), np.gradient(y, t)
+    cth, sth = np.cos(theta), np.sin(theta)
+    return cth * dx + sth * dy, -sth * dx + cth * dy, np.gradient(theta, t)
+
+
 def mujoco_as_measured(data: Path, gait: str) -> dict | None:
     """MuJoCo's base run of `gait` from DATA/ch3_peer/fig3_14.csv: t, x, y, theta and the body
-    velocity (vx, vy in the body frame, omega) by central differences of the sampled poses; None
-    when the file or its MuJoCo rows are missing (a build without MuJoCo, or ch3_peer not run)."""
+    velocity (vx, vy in the body frame, omega) by central differences of the sampled poses; with
+    per-leg columns (sweeps/peer_bigant_points.cpp) also "legs": {leg: {contact, Fz, Fx, Fy,
+    slip_x, slip_y}} (forces of the floor on the foot, N, and the foot's velocity over the floor,
+    m/s, body frame, as our runs' columns). None when the file or its MuJoCo rows are missing (a
+    build without MuJoCo, or ch3_peer not run)."""
     path = data / "ch3_peer" / "fig3_14.csv"
     if not path.is_file():
         return None
@@ -77,11 +92,48 @@ def mujoco_as_measured(data: Path, gait: str) -> dict | None:
         return None
     order = np.argsort(t["t"][on])
     m = {k: t[k][on][order] for k in ("t", "x", "y", "theta")}
-    dx, dy = np.gradient(m["x"], m["t"]), np.gradient(m["y"], m["t"])
-    cth, sth = np.cos(m["theta"]), np.sin(m["theta"])
-    m["vx"], m["vy"] = cth * dx + sth * dy, -sth * dx + cth * dy
-    m["omega"] = np.gradient(m["theta"], m["t"])
+    m["vx"], m["vy"], m["omega"] = body_velocity(m["t"], m["x"], m["y"], m["theta"])
+    names = [col[len("Fz_"):] for col in t.columns if col.startswith("Fz_")]
+    names = [leg for leg in names if all(f"{w}_{leg}" in t.columns for w in LEG_COLUMNS)]
+    if names:
+        m["legs"] = {leg: {w: t[f"{w}_{leg}"][on][order] for w in LEG_COLUMNS} for leg in names}
     return m
+
+
+def mujoco_feet(mj: dict | None, legs: list[str]) -> dict | None:
+    """MuJoCo's per-leg columns for our leg names, None when absent (an older fig3_14.csv)."""
+    if mj is None or "legs" not in mj or any(leg not in mj["legs"] for leg in legs):
+        return None
+    return mj["legs"]
+
+
+def mujoco_until(mj: dict | None, t_end: float) -> dict | None:
+    """MuJoCo's samples up to t_end (our run's last frame), None when fewer than three remain."""
+    if mj is None:
+        return None
+    on = mj["t"] <= t_end + 1e-9
+    if np.count_nonzero(on) < 3:
+        return None
+    out = {k: v[on] for k, v in mj.items() if k != "legs"}
+    if "legs" in mj:
+        out["legs"] = {leg: {w: a[on] for w, a in cols.items()} for leg, cols in mj["legs"].items()}
+    return out
+
+
+def nearest(run: Run, col: str, times: np.ndarray) -> np.ndarray:
+    """Our run's column at the sample nearest each time (our frames include MuJoCo's sample
+    times: both step from t = 0 on grids that divide 0.1 s)."""
+    i = np.clip(np.round(np.interp(times, run.time, np.arange(run.t.n))).astype(int), 0,
+                run.t.n - 1)
+    return run[col][i]
+
+
+def velocity_at(run: Run, times: np.ndarray) -> dict:
+    """Our body velocity at MuJoCo's sample times, by the same central differences of the poses
+    at those times as MuJoCo's (so both are smoothed alike)."""
+    x, y, th = (nearest(run, k, times) for k in ("x", "y", "theta"))
+    vx, vy, om = body_velocity(times, x, y, th)
+    return {"vx": vx, "vy": vy, "omega": om}
 
 
 def note_synthetic(fig, text: str) -> None:
