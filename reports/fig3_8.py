@@ -17,7 +17,7 @@ MuJoCo's BigANT driven by the same feet stands in, labelled so, for the thesis' 
 carrying at least 2 % of Mg (|F_xy|/F_z of the floor's force from its contacts against the foot
 centre's speed over the floor), and its slip percentiles and feet down go to the values. Without
 that file (a build without MuJoCo) the red points are skipped and the title says so. MuJoCo shows
-no step: its friction is a soft (regularized) constraint, so its near-massless feet creep at a
+no step: consistent with its friction being a soft (regularized) constraint, its feet creep at a
 speed that grows with the planar force, well inside the cone (the values' mujoco_fit).
 """
 from __future__ import annotations
@@ -144,8 +144,8 @@ def main():
             + " (μ = 1)"
             + (f"; a line fits its feet down, |F_xy|/F_z = {mfit['k']:.3g} s/m·|u| "
                f"{'+' if mfit['b'] >= 0 else '−'} {abs(mfit['b']):.2g} (R² = {mfit['r2']:.2f}): "
-               "MuJoCo's soft friction constraint "
-               "lets feet creep at a speed that grows with the force, not the step"
+               "consistent with MuJoCo's soft (regularized) friction constraint, which "
+               "lets feet creep at a speed that grows with the force: no step"
                if mfit["k"] is not None and mfit["r2"] is not None else "") + ".")
         values["mujoco_duty_note"] = (
             f"{rb.MEASURED_LABEL}: {values['mujoco_feet_down_mean']:.3g} feet down on average, "
