@@ -75,6 +75,38 @@ def body_velocity(t, x, y, theta) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return cth * dx + sth * dy, -sth * dx + cth * dy, np.gradient(theta, t)
 
 
+def mujoco_runs(data: Path, gait: str, label: str) -> list[dict]:
+    """Every MuJoCo point of `gait` in block `label` of DATA/ch3_peer/fig3_14.csv, one dict per
+    point id as mujoco_as_measured's plus its solref_timeconst, timestep and mu; [] when absent."""
+    path = data / "ch3_peer" / "fig3_14.csv"
+    if not path.is_file():
+        return []
+    t = c.Table(path, ["id", "gait", "source", "label", "t"])
+    on = ((t.str("gait") == gait) & (t.str("source") == "mujoco") & (t.str("label") == label)
+          & np.isfinite(t["t"]))
+    runs = []
+    for point in sorted(set(t.str("id")[on])):
+        m = _mujoco_run(t, on & (t.str("id") == point))
+        if m is not None:
+            m.update({k: float(t[k][on & (t.str("id") == point)][0])
+                      for k in ("solref_timeconst", "timestep", "mu")})
+            runs.append(m)
+    return runs
+
+
+def _mujoco_run(t: c.Table, on: np.ndarray) -> dict | None:
+    if np.count_nonzero(on) < 3:
+        return None
+    order = np.argsort(t["t"][on])
+    m = {k: t[k][on][order] for k in ("t", "x", "y", "theta")}
+    m["vx"], m["vy"], m["omega"] = body_velocity(m["t"], m["x"], m["y"], m["theta"])
+    names = [col[len("Fz_"):] for col in t.columns if col.startswith("Fz_")]
+    names = [leg for leg in names if all(f"{w}_{leg}" in t.columns for w in LEG_COLUMNS)]
+    if names:
+        m["legs"] = {leg: {w: t[f"{w}_{leg}"][on][order] for w in LEG_COLUMNS} for leg in names}
+    return m
+
+
 def mujoco_as_measured(data: Path, gait: str) -> dict | None:
     """MuJoCo's base run of `gait` from DATA/ch3_peer/fig3_14.csv: t, x, y, theta and the body
     velocity (vx, vy in the body frame, omega) by central differences of the sampled poses; with
@@ -88,16 +120,7 @@ def mujoco_as_measured(data: Path, gait: str) -> dict | None:
     t = c.Table(path, ["gait", "source", "label", "t", "x", "y", "theta"])
     on = ((t.str("gait") == gait) & (t.str("source") == "mujoco") & (t.str("label") == "base")
           & np.isfinite(t["t"]))
-    if np.count_nonzero(on) < 3:
-        return None
-    order = np.argsort(t["t"][on])
-    m = {k: t[k][on][order] for k in ("t", "x", "y", "theta")}
-    m["vx"], m["vy"], m["omega"] = body_velocity(m["t"], m["x"], m["y"], m["theta"])
-    names = [col[len("Fz_"):] for col in t.columns if col.startswith("Fz_")]
-    names = [leg for leg in names if all(f"{w}_{leg}" in t.columns for w in LEG_COLUMNS)]
-    if names:
-        m["legs"] = {leg: {w: t[f"{w}_{leg}"][on][order] for w in LEG_COLUMNS} for leg in names}
-    return m
+    return _mujoco_run(t, on)
 
 
 def mujoco_feet(mj: dict | None, legs: list[str]) -> dict | None:
