@@ -153,6 +153,51 @@ void BM_CoulombAnisotropic1e9(benchmark::State& state) {
       [&opt](const Robot& r, Frame& f) { slipwalk::friction::solve_coulomb(r, f, opt); });
 }
 
+/// Frames as the ch3_legged cost study draws them (sweeps/legged_cost_points.cpp): a BigANT-like
+/// hexapod (feet jittered about x ∈ {−0.3, 0, 0.3} m, y = ±0.2 m, about half lifted), the spring
+/// support deciding which feet are down and their loads (3–6, often one foot that Coulomb
+/// friction holds still), feet sliding backward at ~0.1 m/s plus a turn. The rows the study's
+/// hexapod ratio comes from; the all-feet-down disks above have fewer static feet.
+Pool make_supported_hexapod_pool() {
+  const double Mg = 8.18 * 9.81;
+  Pool p(slipwalk::contact::uniform_robot(6, Mg / (6 * 0.01), 1.0, Mg));
+  std::mt19937 rng(3000);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  std::normal_distribution<double> N(0.0, 1.0);
+  Frame& f = p.frame;
+  while (p.inputs.size() < kInputs) {
+    for (int k = 0; k < 6; ++k) {
+      f.q.col(k) << 0.3 * (k / 2 - 1) + 0.02 * U(rng), (k % 2 == 0 ? 0.2 : -0.2) + 0.02 * U(rng),
+          -0.1 + 0.002 * U(rng) + (U(rng) < 0.0 ? 0.0225 + 0.0175 * U(rng) : 0.0);
+    }
+    slipwalk::contact::spring_support(p.robot, f);
+    if (f.support.status != slipwalk::contact::SupportSummary::Status::kBalanced) {
+      continue;
+    }
+    const double turn = 0.05 * N(rng) / 0.3;
+    for (int k = 0; k < 6; ++k) {
+      f.qdot.col(k) << 0.1 * (-1.0 + 0.5 * N(rng)) - turn * f.q(1, k),
+          0.05 * N(rng) + turn * f.q(0, k), 0.0;
+    }
+    p.inputs.push_back(Inputs{f.q, f.qdot, f.contact, f.Fz});
+  }
+  return p;
+}
+
+void BM_ViscousSupportedHexapod(benchmark::State& state) {
+  Pool pool = make_supported_hexapod_pool();
+  run(state, pool,
+      [](const Robot& r, Frame& f) { slipwalk::friction::solve_viscous_coulomb(r, f); });
+}
+
+void BM_CoulombSupportedHexapod1e9(benchmark::State& state) {
+  Pool pool = make_supported_hexapod_pool();
+  slipwalk::friction::CoulombOptions opt;
+  opt.tol = 1e-9;
+  run(state, pool,
+      [&opt](const Robot& r, Frame& f) { slipwalk::friction::solve_coulomb(r, f, opt); });
+}
+
 /// The whole frame: leg heights vary by ±1 cm around −0.1 m (stiffness 1000 N/m, weight 10 N:
 /// compressions of about 10/(1000 N) m), so feet lift off and the support search has work.
 Pool make_model_pool(int n) {
@@ -195,6 +240,8 @@ BENCHMARK(BM_LocalConnection)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_Epsilon0_01)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_Coulomb1e9)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombAnisotropic1e9)->LEGS->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_ViscousSupportedHexapod)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_CoulombSupportedHexapod1e9)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_SpringSupport)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelViscous)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelCoulomb)->LEGS->Unit(benchmark::kNanosecond);
