@@ -74,6 +74,13 @@ constexpr int kKinkSteps = 12;  // the fast path's steps before the smoothing pa
 // the smoothing path (≈ 5 µs each, 15 % of the study's Coulomb time); a value pass per extra
 // halving is far cheaper, and the next Newton step is full again.
 constexpr double kMinStep = 1.0 / 4096.0;
+// Such a cut (below 1/16) marks a frame whose Newton model is poorly conditioned near the answer
+// (e.g. a mirror pair of feet slowing together). There the Newton point y + p is exact to ~1e-13
+// only once the predicted decrease is below kCutPrecision tol D instead of 1e-3 tol D (a mirror-
+// symmetric gait turned by ~3e-12 rad/s otherwise, tests/connection/test_trajectory.cpp): a
+// stricter trigger, one more Newton step on those frames only.
+constexpr double kDeepCut = 1.0 / 16.0;
+constexpr double kCutPrecision = 1e-6;
 }  // namespace
 
 /// Minimizes m(p) = gᵀp + ½ pᵀHp + ‖r + Bp‖ over p ∈ R³: the sliding feet by their quadratic
@@ -351,6 +358,7 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
   auto& s = frame_.friction;
   int held = -1;  // the foot held static: y lies on its line r_held(y) = 0
   double D = S.f;
+  double precision = 1e-3;  // the certificate is tried below precision · tol · D (see kDeepCut)
   for (int it = 0;; ++it) {
     // The kink foot: the held one, or the sliding foot slowest in slip speed ‖r_k‖/c_k
     // (found without branches: which foot it is varies from frame to frame).
@@ -409,7 +417,7 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
     // Tried once the predicted decrease is below 1e-3 tol D, as the path's polish does: the
     // certificate would often pass earlier, but finish() reports y + p, and this makes that
     // Newton point exact to ~1e-13 (a continuous, mirror-symmetric answer for symmetric gaits).
-    if (st.decrease <= 1e-3 * options_.tol * Dref) {
+    if (st.decrease <= precision * options_.tol * Dref) {
       const double fo = kink >= 0 && held < 0 ? S.f - nr : S.f;
       const Eigen::Vector3d gp = g + H * st.p;
       const double dec = st.p.dot(H * st.p);
@@ -462,6 +470,7 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
         y = yt;
         D = Dv;
         accepted = true;
+        precision = t < kDeepCut ? kCutPrecision : precision;
       }
     }
     if (!accepted) {
