@@ -3,6 +3,7 @@
 // feet: the system (friction::detail::viscous_balance) and the columns of A.
 #include "connection/local_connection.hpp"
 
+#include "connection/connection_columns.hpp"
 #include "friction/balance.hpp"
 
 namespace slipwalk::connection {
@@ -46,13 +47,9 @@ void columns(const contact::Robot& robot, contact::Frame& frame, const Eigen::Ma
 
 }  // namespace
 
-void local_connection(const contact::Robot& robot, contact::Frame& frame) {
-  namespace d = friction::detail;
-  Eigen::Matrix3d M;
-  Eigen::Vector3d b;
-  const d::Contacts cs = d::viscous_balance(robot, frame, M, b);  // c_k in work_n
-  d::Psd3 solver;
-  solver.factorize(M);
+void detail::connection_columns(const contact::Robot& robot, contact::Frame& frame,
+                                const friction::detail::Psd3& solver,
+                                const friction::detail::Contacts& cs) {
   // Scaled coordinates: x = D y, so A_k = −D M̃⁺ (c_k J̃_kᵀ G_k), D = diag(1, 1, 1/L); with the
   // unscaled lever S q_k in J_k = [I | S q_k] this is −c_k (D M̃⁺ D) J_kᵀ G_k.
   Eigen::Matrix3d P = solver.inverse();
@@ -63,6 +60,16 @@ void local_connection(const contact::Robot& robot, contact::Frame& frame) {
   } else {
     columns<false>(robot, frame, P);
   }
+}
+
+void local_connection(const contact::Robot& robot, contact::Frame& frame) {
+  namespace d = friction::detail;
+  Eigen::Matrix3d M;
+  Eigen::Vector3d b;
+  const d::Contacts cs = d::viscous_balance(robot, frame, M, b);  // c_k in work_n
+  d::Psd3 solver;
+  solver.factorize(M);
+  detail::connection_columns(robot, frame, solver, cs);
 }
 
 }  // namespace slipwalk::connection

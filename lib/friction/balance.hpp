@@ -192,6 +192,12 @@ void viscous_system(const contact::Robot& robot, const contact::Frame& frame, do
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
                          Eigen::Vector3d& b);
 
+/// The viscous-Coulomb balance from its assembled (viscous_balance) and factorized system: v_body,
+/// the forces and the friction summary, as solve_viscous_coulomb writes them. For callers that
+/// need the factorization for something else too (connection::evaluate builds A from it).
+void finish_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame, const Psd3& solver,
+                            const Contacts& cs, const Eigen::Vector3d& b);
+
 /// Writes v_body from scaled coordinates.
 inline void set_velocity(contact::Frame& frame, const Eigen::Vector3d& y, double L) {
   frame.v_body = Eigen::Vector3d(y(0), y(1), y(2) / L);

@@ -13,14 +13,12 @@ namespace {
 /// balance Σ J_kᵀ F_k + f = 0 reads M x = f − b, so x = M⁻¹ f − M⁻¹ b: the same matrix and the
 /// same A as eq. 3.20, plus the constant M⁻¹ f (terrain/terrain.hpp derives f for a slope). The
 /// unloaded instantiation is the flat path, with no code for f.
+/// finish() takes the assembled and factorized system (solve() below, or connection::evaluate,
+/// which factorizes it once for both A and v).
 template <bool kLoaded>
-void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vector3d& load) {
+void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Psd3& solver,
+            const detail::Contacts& cs, const Eigen::Vector3d& b, const Eigen::Vector3d& load) {
   // ---- the 3 × 3 balance in scaled coordinates, least norm when singular --------------------
-  Eigen::Matrix3d M;
-  Eigen::Vector3d b;
-  const detail::Contacts cs = detail::viscous_balance(robot, frame, M, b);  // c_k in work_n
-  detail::Psd3 solver;
-  solver.factorize(M);
   Eigen::Vector3d rhs = -b;
   if constexpr (kLoaded) {
     // Scaled coordinates y = (v, L ω): the moment row is divided by L like b's (balance.hpp).
@@ -103,7 +101,23 @@ void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vect
   }
 }
 
+template <bool kLoaded>
+void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vector3d& load) {
+  Eigen::Matrix3d M;
+  Eigen::Vector3d b;
+  const detail::Contacts cs = detail::viscous_balance(robot, frame, M, b);  // c_k in work_n
+  detail::Psd3 solver;
+  solver.factorize(M);
+  finish<kLoaded>(robot, frame, solver, cs, b, load);
+}
+
 }  // namespace
+
+void detail::finish_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame,
+                                    const Psd3& solver, const Contacts& cs,
+                                    const Eigen::Vector3d& b) {
+  finish<false>(robot, frame, solver, cs, b, Eigen::Vector3d::Zero());
+}
 
 void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame) {
   solve<false>(robot, frame, Eigen::Vector3d::Zero());

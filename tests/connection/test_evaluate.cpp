@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "connection/local_connection.hpp"
 #include "contact/robot.hpp"
@@ -26,30 +27,43 @@ contact::Frame hexapod_frame(const contact::Robot& robot, std::mt19937& rng) {
 }
 
 TEST(ConnectionEvaluate, IsSpringSupportThenTheFrictionLaw) {
+  // evaluate() factorizes the viscous system once for A and the viscous-Coulomb balance; the
+  // stages run by hand assemble it twice. Same bits either way, isotropic and anisotropic.
   std::mt19937 rng(1);
-  const contact::Robot robot = contact::uniform_robot(6, 100.0, 0.8, 9.81);
-  for (int trial = 0; trial < 50; ++trial) {
-    contact::Frame f = hexapod_frame(robot, rng);
-    contact::Frame g = f;
-    for (FrictionLaw law : {FrictionLaw::kViscousCoulomb, FrictionLaw::kCoulomb}) {
-      evaluate(robot, f, law);
-      contact::spring_support(robot, g);
-      EXPECT_EQ(f.contact, g.contact);
-      EXPECT_EQ((f.Fz - g.Fz).norm(), 0.0);
-      if (law == FrictionLaw::kViscousCoulomb) {
-        friction::solve_viscous_coulomb(robot, g);
-      } else {
-        friction::solve_coulomb(robot, g);
-      }
-      EXPECT_EQ((f.v_body - g.v_body).norm(), 0.0);
-      EXPECT_TRUE(f.friction.converged);
-      EXPECT_LE(f.friction.residual, 1e-10);
-      local_connection(robot, g);
-      EXPECT_EQ((f.A - g.A).norm(), 0.0);
-      for (int k = 0; k < robot.legs(); ++k) {
-        if (f.contact[static_cast<std::size_t>(k)] == 0) {
-          EXPECT_EQ(f.A.middleCols<2>(2 * k).norm(), 0.0);
-          EXPECT_EQ(f.Fxy.col(k).norm(), 0.0);
+  contact::Robot anisotropic = contact::uniform_robot(6, 100.0, 0.8, 9.81);
+  for (int k = 0; k < 6; ++k) {
+    anisotropic.w.col(k) << 0.5 * std::cos(k), 0.3 * std::sin(k);
+  }
+  const std::vector<contact::Robot> robots = {contact::uniform_robot(6, 100.0, 0.8, 9.81),
+                                              anisotropic};
+  for (const contact::Robot& robot : robots) {
+    for (int trial = 0; trial < 50; ++trial) {
+      contact::Frame f = hexapod_frame(robot, rng);
+      contact::Frame g = f;
+      for (FrictionLaw law : {FrictionLaw::kViscousCoulomb, FrictionLaw::kCoulomb}) {
+        evaluate(robot, f, law);
+        contact::spring_support(robot, g);
+        EXPECT_EQ(f.contact, g.contact);
+        EXPECT_EQ((f.Fz - g.Fz).norm(), 0.0);
+        if (law == FrictionLaw::kViscousCoulomb) {
+          friction::solve_viscous_coulomb(robot, g);
+        } else {
+          friction::solve_coulomb(robot, g);
+        }
+        EXPECT_EQ((f.v_body - g.v_body).norm(), 0.0);
+        EXPECT_EQ((f.Fxy - g.Fxy).norm(), 0.0);
+        EXPECT_EQ(f.friction.dissipation, g.friction.dissipation);
+        EXPECT_EQ(f.friction.residual, g.friction.residual);
+        EXPECT_EQ(f.friction.unique, g.friction.unique);
+        EXPECT_TRUE(f.friction.converged);
+        EXPECT_LE(f.friction.residual, 1e-10);
+        local_connection(robot, g);
+        EXPECT_EQ((f.A - g.A).norm(), 0.0);
+        for (int k = 0; k < robot.legs(); ++k) {
+          if (f.contact[static_cast<std::size_t>(k)] == 0) {
+            EXPECT_EQ(f.A.middleCols<2>(2 * k).norm(), 0.0);
+            EXPECT_EQ(f.Fxy.col(k).norm(), 0.0);
+          }
         }
       }
     }
