@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "peers/mujoco/bigant_spec.hpp"
 #include "robots/robots.hpp"
+#include "support/point_rows.hpp"
 #include "sweeps/point_functions.hpp"
 #include "sweeps/spec.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
@@ -316,18 +317,14 @@ TEST(BigAntPeer, SymmetricTripodDoesNotTurnOverACycle) {
 }
 
 TEST(BigAntPeer, PointGivesRowsOfEverySource) {
-  const sweeps::PointFunction* fn = sweeps::find_point_function("peer_bigant");
-  ASSERT_NE(fn, nullptr);
-  const std::string text =
-      "study = \"t\"\nname = \"t\"\nkind = \"peer_bigant\"\n[params]\nduration = 1.0\n"
+  const sweeps::PointFunction* fn = &test_support::point_function("peer_bigant");
+  const auto points = test_support::points_of(
+      "peer_bigant",
+      "[params]\nduration = 1.0\n"
       "sample = 0.5\nsettle = 0.2\nkp_z = 2675.0\nsolref_timeconst = 0.005\n[axes]\ngait = "
-      "[\"tripod\", \"metachronal\"]\n";
-  const auto points = sweeps::expand(sweeps::parse_spec(text, "peer.toml"));
+      "[\"tripod\", \"metachronal\"]\n");
   ASSERT_EQ(points.size(), 2u);
-  const auto col = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(fn->columns.begin(), fn->columns.end(), name) -
-                                    fn->columns.begin());
-  };
+  const auto col = [&](const std::string& name) { return test_support::column(*fn, name); };
   for (const auto& p : points) {
     fn->check(p);
     const sweeps::PointResult r = fn->run(p);

@@ -17,6 +17,7 @@
 #include "contact/spring_support.hpp"
 #include "core/error.hpp"
 #include "peers/mujoco/legged_spec.hpp"
+#include "support/point_rows.hpp"
 #include "sweeps/point_functions.hpp"
 #include "sweeps/random.hpp"
 #include "sweeps/spec.hpp"
@@ -250,17 +251,13 @@ TEST(MujocoPeer, FrictionOpposesSliding) {
 }
 
 TEST(MujocoPeer, ScalingPointGivesSaneRows) {
-  const sweeps::PointFunction* fn = sweeps::find_point_function("peer_scaling");
-  ASSERT_NE(fn, nullptr);
-  const std::string text =
-      "study = \"t\"\nname = \"t\"\nkind = \"peer_scaling\"\n[params]\nconfigs = 20\n"
-      "batches = 1\nmin_batch_us = 1\n[axes]\nN = [3, 16]\n";
-  const auto points = sweeps::expand(sweeps::parse_spec(text, "peer.toml"));
+  const sweeps::PointFunction* fn = &test_support::point_function("peer_scaling");
+  const auto points =
+      test_support::points_of("peer_scaling",
+                              "[params]\nconfigs = 20\n"
+                              "batches = 1\nmin_batch_us = 1\n[axes]\nN = [3, 16]\n");
   ASSERT_EQ(points.size(), 2u);
-  const auto col = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(fn->columns.begin(), fn->columns.end(), name) -
-                                    fn->columns.begin());
-  };
+  const auto col = [&](const std::string& name) { return test_support::column(*fn, name); };
   for (const auto& p : points) {
     fn->check(p);
     const sweeps::PointResult r = fn->run(p);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "support/point_rows.hpp"
 #include "sweeps/point_functions.hpp"
 #include "sweeps/spec.hpp"
 
@@ -18,24 +19,13 @@ namespace slipwalk::sweeps {
 namespace {
 
 std::vector<Point> points(const std::string& kind, const std::string& body) {
-  const std::string text = "study = \"t\"\nname = \"t\"\nkind = \"" + kind + "\"\n" + body;
-  return expand(parse_spec(text, "peer.toml"));
+  return test_support::points_of(kind, body);
 }
 
-const PointFunction& fn(const std::string& name) {
-  const PointFunction* f = find_point_function(name);
-  if (f == nullptr) {
-    throw std::runtime_error("no point function " + name);
-  }
-  return *f;
-}
+const PointFunction& fn(const std::string& name) { return test_support::point_function(name); }
 
 std::size_t col(const PointFunction& f, const std::string& name) {
-  const auto it = std::find(f.columns.begin(), f.columns.end(), name);
-  if (it == f.columns.end()) {
-    throw std::runtime_error("no column " + name);
-  }
-  return static_cast<std::size_t>(it - f.columns.begin());
+  return test_support::column(f, name);
 }
 
 void expect_input_error(const std::string& kind, const std::string& body, const std::string& key) {
