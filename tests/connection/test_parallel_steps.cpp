@@ -10,7 +10,7 @@
 #include "connection/parallel_steps.hpp"
 #include "core/error.hpp"
 #include "core/worker_pool.hpp"
-#include "sweeps/random.hpp"
+#include "sweeps/engine/random.hpp"
 
 namespace slipwalk::connection {
 namespace {

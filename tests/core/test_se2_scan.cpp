@@ -13,7 +13,7 @@
 #include "core/error.hpp"
 #include "core/se2_scan.hpp"
 #include "core/worker_pool.hpp"
-#include "sweeps/random.hpp"
+#include "sweeps/engine/random.hpp"
 
 namespace slipwalk::core {
 namespace {

@@ -7,8 +7,9 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "sweeps/runner.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/runner.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/engine/spec.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -31,7 +32,7 @@ axes.F_frac = { linspace = [0.05, 1.0], n = 2 }
 /// Loads, expands and validates; true if accepted, false if rejected as bad input.
 bool accepted(const std::string& text) {
   try {
-    const PreparedSweep p = prepare(parse_spec(text, "fuzz.toml", false));
+    const PreparedSweep p = points::prepare(parse_spec(text, "fuzz.toml", false));
     return p.points.size() < 100'000;
   } catch (const core::InputError&) {
     return false;

@@ -17,8 +17,8 @@
 #include "peers/mujoco/bigant_spec.hpp"
 #include "robots/robots.hpp"
 #include "support/point_rows.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/engine/spec.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
 #include <mujoco/mujoco.h>
 
@@ -317,7 +317,7 @@ TEST(BigAntPeer, SymmetricTripodDoesNotTurnOverACycle) {
 }
 
 TEST(BigAntPeer, PointGivesRowsOfEverySource) {
-  const sweeps::PointFunction* fn = &test_support::point_function("peer_bigant");
+  const sweeps::PointKind* fn = &test_support::point_kind("peer_bigant");
   const auto points = test_support::points_of(
       "peer_bigant",
       "[params]\nduration = 1.0\n"

@@ -18,9 +18,9 @@
 #include "core/error.hpp"
 #include "peers/mujoco/legged_spec.hpp"
 #include "support/point_rows.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/random.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/engine/random.hpp"
+#include "sweeps/engine/spec.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
 #include <mujoco/mujoco.h>
 
@@ -251,7 +251,7 @@ TEST(MujocoPeer, FrictionOpposesSliding) {
 }
 
 TEST(MujocoPeer, ScalingPointGivesSaneRows) {
-  const sweeps::PointFunction* fn = &test_support::point_function("peer_scaling");
+  const sweeps::PointKind* fn = &test_support::point_kind("peer_scaling");
   const auto points =
       test_support::points_of("peer_scaling",
                               "[params]\nconfigs = 20\n"

@@ -19,7 +19,7 @@
 #include "scene/run_writer.hpp"
 #include "scene/scene.hpp"
 #include "support/count_allocations.hpp"
-#include "sweeps/study.hpp"
+#include "sweeps/engine/study.hpp"
 
 namespace slipwalk::scene {
 namespace {

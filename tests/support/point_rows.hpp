@@ -1,6 +1,6 @@
 #pragma once
 // Shared by the tests of sweep point functions: a spec's points from the body of a study file,
-// a point function by kind, and a column's index in its rows (throwing, so that a renamed
+// a point kind by name, and a column's index in its rows (throwing, so that a renamed
 // column fails the test instead of reading past the row).
 #include <algorithm>
 #include <cstddef>
@@ -8,8 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "sweeps/point_functions.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/engine/spec.hpp"
+#include "sweeps/points/families.hpp"
 
 namespace slipwalk::test_support {
 
@@ -19,16 +20,17 @@ inline std::vector<sweeps::Point> points_of(const std::string& kind, const std::
   return sweeps::expand(sweeps::parse_spec(text, "peer.toml"));
 }
 
-inline const sweeps::PointFunction& point_function(const std::string& kind) {
-  const sweeps::PointFunction* f = sweeps::find_point_function(kind);
+inline const sweeps::PointKind& point_kind(const std::string& kind) {
+  const sweeps::PointKind* f = sweeps::find_point_kind(sweeps::points::all_kinds(), kind);
   if (f == nullptr) {
-    throw std::runtime_error("no point function " + kind);
+    throw std::runtime_error("no point kind " + kind);
   }
   return *f;
 }
 
-inline std::size_t column(const sweeps::PointFunction& f, const std::string& name) {
-  const auto it = std::find(f.columns.begin(), f.columns.end(), name);
+inline std::size_t column(const sweeps::PointKind& f, const std::string& name) {
+  const auto it = std::find_if(f.columns.begin(), f.columns.end(),
+                               [&](const sweeps::ColumnInfo& c) { return c.name == name; });
   if (it == f.columns.end()) {
     throw std::runtime_error("no column " + name);
   }

@@ -12,14 +12,15 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/engine/spec.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
 
-const PointFunction& fn() {
-  const PointFunction* f = find_point_function("legged_cost");
+const PointKind& fn() {
+  const PointKind* f = find_point_kind(points::all_kinds(), "legged_cost");
   if (f == nullptr) {
     throw std::runtime_error("no point function legged_cost");
   }
@@ -32,7 +33,7 @@ std::vector<Point> points(const std::string& body) {
 }
 
 std::size_t col(const std::string& name) {
-  const auto& c = fn().columns;
+  const auto c = fn().column_names();
   const auto it = std::find(c.begin(), c.end(), name);
   if (it == c.end()) {
     throw std::runtime_error("no column " + name);
@@ -40,7 +41,7 @@ std::size_t col(const std::string& name) {
   return static_cast<std::size_t>(it - c.begin());
 }
 
-double num(const Row& r, const std::string& name) {
+double num(const Cells& r, const std::string& name) {
   const Cell& c = r[col(name)];
   if (const auto* d = std::get_if<double>(&c)) {
     return *d;
@@ -49,8 +50,8 @@ double num(const Row& r, const std::string& name) {
 }
 
 /// The single row of each point, checked first.
-std::vector<Row> run(const std::string& body) {
-  std::vector<Row> rows;
+std::vector<Cells> run(const std::string& body) {
+  std::vector<Cells> rows;
   for (const Point& p : points(body)) {
     fn().check(p);
     PointResult r = fn().run(p);
@@ -93,13 +94,13 @@ TEST(LeggedCost, RejectsBadKeysNamingThem) {
 // non-monotone steps of an active-set method (one more polish step can land anywhere below tol).
 TEST(LeggedCost, CoulombErrorShrinksAsTolTightens) {
   for (const std::string& robot : kRobots) {
-    const std::vector<Row> rows =
+    const std::vector<Cells> rows =
         run("[params]\nmethod = \"coulomb\"\nframes = 6\nrepeats = 1\nseed = 3\n" + robot +
             "[axes]\ntol = { logspace = [1e-2, 1e-12], n = 6 }\n");
     ASSERT_EQ(rows.size(), 6u);
     double prev_v = INFINITY;
     double prev_F = INFINITY;
-    for (const Row& r : rows) {
+    for (const Cells& r : rows) {
       const double tol = num(r, "tol");
       const double ev = num(r, "err_v_max");
       const double eF = num(r, "err_F_max");
@@ -128,8 +129,8 @@ TEST(LeggedCost, CoulombErrorShrinksAsTolTightens) {
 TEST(LeggedCost, EpsilonErrorShrinksAsEpsilonFallsAndViscousIsTheLimit) {
   for (const std::string& robot : kRobots) {
     const std::string common = "frames = 6\nrepeats = 1\nseed = 3\n" + robot;
-    const std::vector<Row> viscous = run("[params]\nmethod = \"viscous\"\n" + common);
-    const std::vector<Row> rows = run("[params]\nmethod = \"epsilon\"\n" + common +
+    const std::vector<Cells> viscous = run("[params]\nmethod = \"viscous\"\n" + common);
+    const std::vector<Cells> rows = run("[params]\nmethod = \"epsilon\"\n" + common +
                                       "[axes]\neps = { logspace = [1e1, 1e-6], n = 8 }\n");
     ASSERT_EQ(rows.size(), 8u);
     const double visc = num(viscous[0], "err_v_median");
@@ -137,7 +138,7 @@ TEST(LeggedCost, EpsilonErrorShrinksAsEpsilonFallsAndViscousIsTheLimit) {
     EXPECT_GT(visc, 1e-3);  // the ansatz is a different law: not a vanishing error
     EXPECT_NEAR(num(rows.front(), "err_v_median"), visc, 0.1 * visc);
     double prev = INFINITY;
-    for (const Row& r : rows) {
+    for (const Cells& r : rows) {
       const double eps = num(r, "eps");
       const double e = num(r, "err_v_median");
       EXPECT_LE(e, 3.0 * prev) << "eps " << eps;
@@ -157,18 +158,18 @@ TEST(LeggedCost, RowsAreDeterministicApartFromTimings) {
   const std::string body =
       "[params]\nrobot = \"disk\"\nN = 12\nframes = 5\nrepeats = 2\n"
       "[axes]\nmethod = [\"viscous\", \"support\", \"model\"]\n";
-  const std::vector<Row> a = run(body);
-  const std::vector<Row> b = run(body);
+  const std::vector<Cells> a = run(body);
+  const std::vector<Cells> b = run(body);
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     for (std::size_t j = 0; j < a[i].size(); ++j) {
-      if (fn().columns[j].rfind("time_", 0) == 0) {
+      if (fn().columns[j].timing) {
         continue;  // the timings, and only they, vary
       }
       EXPECT_TRUE(a[i][j] == b[i][j] ||
                   (std::holds_alternative<double>(a[i][j]) &&
                    std::isnan(std::get<double>(a[i][j])) && std::isnan(std::get<double>(b[i][j]))))
-          << fn().columns[j];
+          << fn().columns[j].name;
     }
     // The frames are the model's own: at least three feet down, some lifted.
     EXPECT_GE(num(a[i], "contacts_min"), 3.0);

@@ -12,8 +12,9 @@
 #include "contact/frame_json.hpp"
 #include "contact/spring_support.hpp"
 #include "core/error.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/engine/spec.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -28,8 +29,8 @@ std::vector<Point> points(const std::string& kind, const std::string& body,
   return expand(parse_spec(text, path));
 }
 
-const PointFunction& fn(const std::string& name) {
-  const PointFunction* f = find_point_function(name);
+const PointKind& fn(const std::string& name) {
+  const PointKind* f = find_point_kind(points::all_kinds(), name);
   if (f == nullptr) {
     throw std::runtime_error("no point function " + name);
   }
@@ -37,8 +38,8 @@ const PointFunction& fn(const std::string& name) {
 }
 
 /// Checks then runs every point; the rows of all points.
-std::vector<Row> run_all(const std::string& kind, const std::vector<Point>& pts) {
-  std::vector<Row> rows;
+std::vector<Cells> run_all(const std::string& kind, const std::vector<Point>& pts) {
+  std::vector<Cells> rows;
   for (const Point& p : pts) {
     fn(kind).check(p);
     PointResult r = fn(kind).run(p);
@@ -52,7 +53,7 @@ std::vector<Row> run_all(const std::string& kind, const std::vector<Point>& pts)
 }
 
 std::size_t col(const std::string& kind, const std::string& name) {
-  const auto& c = fn(kind).columns;
+  const auto c = fn(kind).column_names();
   const auto it = std::find(c.begin(), c.end(), name);
   if (it == c.end()) {
     throw std::runtime_error("no column " + name);
@@ -60,13 +61,13 @@ std::size_t col(const std::string& kind, const std::string& name) {
   return static_cast<std::size_t>(it - c.begin());
 }
 
-double num(const Row& row, std::size_t i) {
+double num(const Cells& row, std::size_t i) {
   if (const auto* d = std::get_if<double>(&row[i])) {
     return *d;
   }
   return static_cast<double>(std::get<long long>(row[i]));
 }
-std::string str(const Row& row, std::size_t i) { return std::get<std::string>(row[i]); }
+std::string str(const Cells& row, std::size_t i) { return std::get<std::string>(row[i]); }
 
 /// check() throws an InputError whose message names `key` and a file:line:col or the file.
 void expect_rejected(const std::string& kind, const std::string& body, const std::string& key,
@@ -128,7 +129,7 @@ TEST(Legged1d, RandomTrialsAreDeterministicAndMatchMedianAndMean) {
   const auto b = run_all("legged_1d", points("legged_1d", body));
   ASSERT_EQ(a.size(), 3u * 3u * 20u);
   EXPECT_EQ(a, b);
-  for (const Row& r : a) {
+  for (const Cells& r : a) {
     const double scale = std::max(1.0, num(r, col("legged_1d", "speed_range")));
     EXPECT_EQ(num(r, col("legged_1d", "in_interval")), 1.0);
     EXPECT_NEAR(num(r, col("legged_1d", "v_viscous")), num(r, col("legged_1d", "neg_mean")),
@@ -167,10 +168,10 @@ TEST(Legged1d, CheckRejectsBadKeysAndValues) {
 // --- legged_eps_error ---------------------------------------------------------------------------
 
 /// The row of a grid at δv/|v| = (x, y).
-const Row& at(const std::vector<Row>& rows, double x, double y) {
+const Cells& at(const std::vector<Cells>& rows, double x, double y) {
   const std::size_t cx = col("legged_eps_error", "dvx");
   const std::size_t cy = col("legged_eps_error", "dvy");
-  for (const Row& r : rows) {
+  for (const Cells& r : rows) {
     if (std::abs(num(r, cx) - x) < 1e-12 && std::abs(num(r, cy) - y) < 1e-12) {
       return r;
     }
@@ -246,7 +247,7 @@ TEST(LeggedForceMap, BalancesGridAndRestVelocities) {
                            "vx_min = 0.0\nvx_max = 2.0\nvy_min = -1.0\nvy_max = 1.0\n",
                            (dir / "spec.toml").string()));
   int feet = 0, balances = 0, grid = 0;
-  for (const Row& r : rows) {
+  for (const Cells& r : rows) {
     const std::string row = str(r, col(kind, "row"));
     if (row == "foot") {
       ++feet;
@@ -308,9 +309,9 @@ TEST(LeggedSupportPath, PathEndsAtTheLibraryBalanceWithConsistentContactSets) {
   contact::spring_support(in.robot, in.frame);
 
   int steps = 0;
-  const Row* last_step = nullptr;
-  const Row* result = nullptr;
-  for (const Row& r : rows) {
+  const Cells* last_step = nullptr;
+  const Cells* result = nullptr;
+  for (const Cells& r : rows) {
     const std::string row = str(r, col(kind, "row"));
     if (row == "step") {
       ++steps;

@@ -12,8 +12,8 @@
 
 #include "core/error.hpp"
 #include "support/point_rows.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/engine/spec.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -22,9 +22,9 @@ std::vector<Point> points(const std::string& kind, const std::string& body) {
   return test_support::points_of(kind, body);
 }
 
-const PointFunction& fn(const std::string& name) { return test_support::point_function(name); }
+const PointKind& fn(const std::string& name) { return test_support::point_kind(name); }
 
-std::size_t col(const PointFunction& f, const std::string& name) {
+std::size_t col(const PointKind& f, const std::string& name) {
   return test_support::column(f, name);
 }
 
@@ -50,7 +50,7 @@ TEST(PeerPoints, BadKeysAndValuesNameTheKey) {
 }
 
 TEST(PeerPoints, ParallelOverheadRowsAreConsistent) {
-  const PointFunction& f = fn("parallel_overhead");
+  const PointKind& f = fn("parallel_overhead");
   const auto pts = points("parallel_overhead",
                           "[params]\ntrajectories = 3\nsteps = 500\nmax_threads = 3\nblocks = 8\n");
   ASSERT_EQ(pts.size(), 1u);
@@ -59,7 +59,7 @@ TEST(PeerPoints, ParallelOverheadRowsAreConsistent) {
   ASSERT_FALSE(r.failed) << r.message;
   ASSERT_EQ(r.rows.size(), 9u);  // 3 trajectories × M = 1, 2, 3
   for (std::size_t i = 0; i < r.rows.size(); ++i) {
-    const Row& row = r.rows[i];
+    const Cells& row = r.rows[i];
     ASSERT_EQ(row.size(), f.columns.size());
     EXPECT_EQ(std::get<long long>(row[col(f, "trajectory")]), static_cast<long long>(i / 3));
     EXPECT_EQ(std::get<long long>(row[col(f, "threads")]), static_cast<long long>(i % 3 + 1));
@@ -71,7 +71,7 @@ TEST(PeerPoints, ParallelOverheadRowsAreConsistent) {
       EXPECT_GT(std::get<double>(row[col(f, t)]), 0.0) << t;
     }
     // Every thread count reports the same end pose of a trajectory (bitwise, also in the CSV).
-    const Row& first = r.rows[i - i % 3];
+    const Cells& first = r.rows[i - i % 3];
     EXPECT_EQ(std::get<double>(row[col(f, "end_x")]), std::get<double>(first[col(f, "end_x")]));
     // The body moves: 500 steps of 0.01 s at ~0.1 m/s.
     EXPECT_GT(

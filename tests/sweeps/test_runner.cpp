@@ -11,9 +11,10 @@
 #include "core/error.hpp"
 #include "events/exact_backend.hpp"
 #include "inchworm/simulate.hpp"
-#include "sweeps/runner.hpp"
-#include "sweeps/spec.hpp"
-#include "sweeps/study.hpp"
+#include "sweeps/engine/runner.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/engine/spec.hpp"
+#include "sweeps/engine/study.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -38,7 +39,7 @@ method = ["exact", "analytic"]
 )";
 
 PreparedSweep prepared(const std::string& text = kSpec) {
-  return prepare(parse_spec(text, "grid.toml"));
+  return points::prepare(parse_spec(text, "grid.toml"));
 }
 
 RunOptions options(const std::filesystem::path& data, unsigned jobs, bool timing = false) {
@@ -274,7 +275,7 @@ F = 73.575
 mu = 0.05
 cycles = 30
 )");
-  const PointResult r = sweep.function->run(sweep.points[0]);
+  const PointResult r = sweep.kind->run(sweep.points[0]);
   ASSERT_FALSE(r.failed) << r.message;
   ASSERT_EQ(r.rows.size(), 30U);
   inchworm::Params p;

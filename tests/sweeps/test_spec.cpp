@@ -7,9 +7,10 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "sweeps/runner.hpp"
-#include "sweeps/spec.hpp"
-#include "sweeps/study.hpp"
+#include "sweeps/engine/runner.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/engine/spec.hpp"
+#include "sweeps/engine/study.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -240,11 +241,11 @@ TEST(Spec, BadSpecsAreInputErrors) {
 
 TEST(Spec, UnknownKindAndUnknownKeyBeforeAnyPointRuns) {
   const std::string kind = where_of([] {
-    (void)prepare(parse_spec("study = \"a\"\nname = \"b\"\nkind = \"nope\"\n", "s.toml"));
+    (void)points::prepare(parse_spec("study = \"a\"\nname = \"b\"\nkind = \"nope\"\n", "s.toml"));
   });
   EXPECT_EQ(kind, "s.toml:3:8");
   const std::string message =
-      message_of([] { (void)prepare(parse("[params]\nmu = 1.0\nForce = 45.0\n")); });
+      message_of([] { (void)points::prepare(parse("[params]\nmu = 1.0\nForce = 45.0\n")); });
   EXPECT_NE(message.find("spec.toml:6:9"), std::string::npos) << message;
   EXPECT_NE(message.find("Force"), std::string::npos) << message;
 }
@@ -267,7 +268,7 @@ TEST(Spec, ValueOutOfRangeAtOnePointIsReportedWithKeyAndPoint) {
            {"[params]\nmu = 1.0\nF_frac = 0.5\nF_lo = \"nope\"\n", "F_lo", ""},
            {"[params]\nmu = 1.0\nF = 45.0\nF_lo = \"muMg\"\n", "F_lo", ""},
        }) {
-    const std::string message = message_of([&] { (void)prepare(parse(c.body)); });
+    const std::string message = message_of([&] { (void)points::prepare(parse(c.body)); });
     EXPECT_EQ(message.rfind(c.where, 0), 0U) << c.body << " -> " << message;
     EXPECT_NE(message.find(c.key), std::string::npos) << c.body << " -> " << message;
     EXPECT_NE(message.find("point"), std::string::npos) << c.body << " -> " << message;
@@ -277,23 +278,23 @@ TEST(Spec, ValueOutOfRangeAtOnePointIsReportedWithKeyAndPoint) {
 TEST(Spec, ConvergenceKindNeedsCyclesAndTheExactBackend) {
   const std::string head = "study = \"a\"\nname = \"b\"\nkind = \"inchworm_convergence\"\n";
   EXPECT_NO_THROW(
-      (void)prepare(parse_spec(head + "[params]\nF = 45.0\nmu = 1.0\ncycles = 10\n", "s")));
-  EXPECT_NE(where_of([&] { (void)prepare(parse_spec(head + "[params]\nF = 45.0\n", "s")); }), "");
+      (void)points::prepare(parse_spec(head + "[params]\nF = 45.0\nmu = 1.0\ncycles = 10\n", "s")));
+  EXPECT_NE(where_of([&] { (void)points::prepare(parse_spec(head + "[params]\nF = 45.0\n", "s")); }), "");
   EXPECT_NE(where_of([&] {
-              (void)prepare(
+              (void)points::prepare(
                   parse_spec(head + "[params]\nF = 45.0\ncycles = 10\nmethod = \"cvode\"\n", "s"));
             }),
             "");
   EXPECT_NE(
       where_of([&] {
-        (void)prepare(parse_spec(head + "[params]\nF = 45.0\ncycles = 10\nrtol = 1e-6\n", "s"));
+        (void)points::prepare(parse_spec(head + "[params]\nF = 45.0\ncycles = 10\nrtol = 1e-6\n", "s"));
       }),
       "");
 }
 
 TEST(Spec, ForceRanges) {
   // F_frac over [F_lo, F_max]: from mu_s m g by default, from mu_s M g with F_lo = "muMg".
-  const auto p = prepare(parse(R"(
+  const auto p = points::prepare(parse(R"(
 [params]
 method = "exact"
 F_lo = "muMg"
@@ -303,8 +304,8 @@ mu = [0.05, 1.0]
 F_frac = [0.0, 1.0]
 )"));
   ASSERT_EQ(p.points.size(), 4U);
-  const PointResult first = p.function->run(p.points[0]);
-  const PointResult last = p.function->run(p.points[3]);
+  const PointResult first = p.kind->run(p.points[0]);
+  const PointResult last = p.kind->run(p.points[3]);
   const auto cell = [](const PointResult& r, int i) { return std::get<double>(r.rows[0][i]); };
   EXPECT_NEAR(cell(first, 3), 1.0001 * 0.05 * 1.5 * 9.81, 1e-13);  // F
   EXPECT_NEAR(cell(first, 4), 1.0001, 1e-13);                      // f_tilde
@@ -315,15 +316,15 @@ F_frac = [0.0, 1.0]
 
 /// The column of `name` in the inchworm_vss output.
 std::size_t column(const PreparedSweep& p, const std::string& name) {
-  const auto& cols = p.function->columns;
+  const auto cols = p.kind->column_names();
   const auto it = std::find(cols.begin(), cols.end(), name);
   EXPECT_NE(it, cols.end()) << name;
   return static_cast<std::size_t>(it - cols.begin());
 }
 
 TEST(Spec, VssColumnsEndWithTheModel) {
-  const auto p = prepare(parse("[params]\nF = 45.0\nmu = 1.0\n"));
-  const auto& cols = p.function->columns;
+  const auto p = points::prepare(parse("[params]\nF = 45.0\nmu = 1.0\n"));
+  const auto cols = p.kind->column_names();
   ASSERT_GE(cols.size(), 33U);
   // appended after the chapter 2 columns, which keep their places
   EXPECT_EQ(cols[22], "message");
@@ -338,7 +339,7 @@ TEST(Spec, VssColumnsEndWithTheModel) {
 }
 
 TEST(Spec, ModelAndAlpha) {
-  const auto p = prepare(parse(R"(
+  const auto p = points::prepare(parse(R"(
 [params]
 mu = 1.0
 method = "analytic"
@@ -359,9 +360,9 @@ alpha = 5.0
   const std::size_t stopped = column(p, "swap_stopped");
   const std::size_t converged = column(p, "converged");
   const std::size_t regime = column(p, "regime");
-  const PointResult instant = p.function->run(p.points[0]);
-  const PointResult slow = p.function->run(p.points[1]);
-  const PointResult fast = p.function->run(p.points[2]);
+  const PointResult instant = p.kind->run(p.points[0]);
+  const PointResult slow = p.kind->run(p.points[1]);
+  const PointResult fast = p.kind->run(p.points[2]);
   EXPECT_EQ(std::get<std::string>(instant.rows[0][model]), "instant");
   EXPECT_TRUE(std::isnan(std::get<double>(instant.rows[0][alpha])));
   EXPECT_EQ(std::get<long long>(instant.rows[0][stopped]), 0);
@@ -395,7 +396,7 @@ TEST(Spec, ModelAndAlphaRejected) {
            {"[params]\nF = 45.0\nmu = 1.0\nmodel = \"dm\"\nalpha = \"big\"\n", "alpha",
             "spec.toml:8:9"},
        }) {
-    const std::string message = message_of([&] { (void)prepare(parse(c.body)); });
+    const std::string message = message_of([&] { (void)points::prepare(parse(c.body)); });
     EXPECT_EQ(message.rfind(c.where, 0), 0U) << c.body << " -> " << message;
     EXPECT_NE(message.find(c.key), std::string::npos) << c.body << " -> " << message;
     EXPECT_NE(message.find("point"), std::string::npos) << c.body << " -> " << message;
@@ -403,7 +404,7 @@ TEST(Spec, ModelAndAlphaRejected) {
   // the convergence kind is the instant model's only
   const std::string head = "study = \"a\"\nname = \"b\"\nkind = \"inchworm_convergence\"\n";
   EXPECT_NE(where_of([&] {
-              (void)prepare(parse_spec(
+              (void)points::prepare(parse_spec(
                   head + "[params]\nF = 45.0\nmu = 1.0\ncycles = 10\nmodel = \"dm\"\n", "s"));
             }),
             "");
@@ -418,7 +419,7 @@ TEST(Spec, StudySpecsLoad) {
     for (const auto& spec : load_study(study_dir).sweeps) {
       ++specs;
       for (bool quick : {false, true}) {
-        const PreparedSweep p = prepare(load_spec(spec, quick));
+        const PreparedSweep p = points::prepare(load_spec(spec, quick));
         EXPECT_GT(p.points.size(), 0U) << spec;
         if (quick) {
           EXPECT_LE(p.points.size(), 200U) << spec;

@@ -12,7 +12,7 @@
 
 #include "cli/command.hpp"
 #include "core/error.hpp"
-#include "sweeps/study.hpp"
+#include "sweeps/engine/study.hpp"
 
 namespace slipwalk::sweeps {
 namespace {

@@ -3,10 +3,11 @@
 #include <memory>
 #include <string>
 
-#include "cli/commands.hpp"
+#include "sweeps/cli/commands.hpp"
 #include "core/error.hpp"
-#include "sweeps/runner.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/runner.hpp"
+#include "sweeps/engine/spec.hpp"
+#include "sweeps/points/families.hpp"
 
 namespace slipwalk::cli {
 
@@ -31,7 +32,7 @@ struct SweepCommand {
       throw core::InputError("--max-points", "must be non-negative");
     }
     // Everything is checked before anything is written.
-    const sweeps::PreparedSweep sweep = sweeps::prepare(sweeps::load_spec(spec, quick));
+    const sweeps::PreparedSweep sweep = sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
     sweeps::RunOptions options;
     options.data_dir = data;
     options.jobs = static_cast<unsigned>(jobs);

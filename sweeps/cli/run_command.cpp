@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/commands.hpp"
+#include "sweeps/cli/commands.hpp"
 #include "scene/run_writer.hpp"
 #include "scene/scene.hpp"
 

@@ -18,8 +18,10 @@
 
 #include "core/csv.hpp"
 #include "scene/scene.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/point_reader.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/points/legacy.hpp"
+#include "sweeps/engine/point_reader.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -139,8 +141,8 @@ PointResult run_stall(const Point& point) {
 
 }  // namespace
 
-std::vector<PointFunction> slope_point_functions() {
-  return {
+std::vector<PointKind> points::slope_kinds() {
+  return legacy_kinds({
       {"slope_progress",
        "§5.2.1: BigANT's tripod straight up a slope, uphill progress per gait cycle (one row)",
        {"id", "law", "angle_deg", "progress_per_cycle", "sliding_frames", "not_converged_frames",
@@ -168,7 +170,7 @@ std::vector<PointFunction> slope_point_functions() {
          }
        },
        run_stall},
-  };
+  });
 }
 
 }  // namespace slipwalk::sweeps

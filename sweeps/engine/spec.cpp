@@ -1,4 +1,4 @@
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/spec.hpp"
 
 #include <toml++/toml.h>
 
@@ -9,7 +9,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
-#include "sweeps/toml_util.hpp"
+#include "sweeps/engine/toml_util.hpp"
 
 namespace slipwalk::sweeps {
 

@@ -1,4 +1,3 @@
-#include "sweeps/point_functions.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,9 +12,12 @@
 #include "inchworm/params.hpp"
 #include "inchworm/simulate.hpp"
 #include "inchworm/vss.hpp"
-#include "sweeps/point_reader.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/engine/point_reader.hpp"
+#include "sweeps/engine/timing.hpp"
+#include "sweeps/points/families.hpp"
 
-namespace slipwalk::sweeps {
+namespace slipwalk::sweeps::points {
 
 namespace {
 
@@ -251,7 +253,80 @@ VssInputs read_vss(const Point& point) {
   return v;
 }
 
-PointResult run_vss(const Point& point) {
+/// One row per point: the solve's result, its cost and the inputs that shaped it.
+struct VssRow {
+  long long id = 0;
+  double mu = 0.0;
+  double mu_s = 0.0;
+  double F = 0.0;
+  double f_tilde = 0.0;
+  double F_frac = 0.0;
+  std::string method;
+  double rtol = 0.0;
+  std::string stop;
+  std::string estimator;
+  double v_ss = 0.0;
+  double period = 0.0;
+  double c0 = 0.0;
+  long long regime = 0;
+  double est_error = 0.0;
+  double last_difference = 0.0;
+  double contraction = 0.0;
+  long long strokes = 0;
+  bool converged = false;
+  long long steps = 0;
+  long long rhs_evals = 0;
+  double wall_s = 0.0;
+  std::string message;
+  std::string model;
+  double alpha = 0.0;
+  bool swap_stopped = false;
+  double cpu_s = 0.0;
+  long long guard_evals = 0;
+  long long events = 0;
+  double target = 0.0;
+  double event_tol = 0.0;
+  double h = 0.0;
+  std::string event_times;
+
+  static std::vector<Column<VssRow>> columns() {
+    return {value("id", &VssRow::id),
+            value("mu", &VssRow::mu),
+            value("mu_s", &VssRow::mu_s),
+            value("F", &VssRow::F, "N"),
+            value("f_tilde", &VssRow::f_tilde),
+            value("F_frac", &VssRow::F_frac),
+            value("method", &VssRow::method),
+            value("rtol", &VssRow::rtol),
+            value("stop", &VssRow::stop),
+            value("estimator", &VssRow::estimator),
+            value("v_ss", &VssRow::v_ss, "m/s"),
+            value("period", &VssRow::period, "s"),
+            value("c0", &VssRow::c0, "m/s"),
+            value("regime", &VssRow::regime),
+            value("est_error", &VssRow::est_error),
+            value("last_difference", &VssRow::last_difference, "m/s"),
+            value("contraction", &VssRow::contraction),
+            value("strokes", &VssRow::strokes),
+            value("converged", &VssRow::converged),
+            value("steps", &VssRow::steps),
+            value("rhs_evals", &VssRow::rhs_evals),
+            timing("wall_s", &VssRow::wall_s, "s"),
+            value("message", &VssRow::message),
+            value("model", &VssRow::model),
+            value("alpha", &VssRow::alpha),
+            value("swap_stopped", &VssRow::swap_stopped),
+            timing("cpu_s", &VssRow::cpu_s, "s"),
+            value("guard_evals", &VssRow::guard_evals),
+            value("events", &VssRow::events),
+            value("target", &VssRow::target),
+            value("event_tol", &VssRow::event_tol, "s"),
+            value("h", &VssRow::h, "s"),
+            value("event_times", &VssRow::event_times)};
+  }
+};
+
+Rows<VssRow> run_vss(const Point& point) {
   const auto [in, repeats] = read_vss(point);
   inchworm::VssResult s;
   std::vector<double> times;
@@ -264,10 +339,6 @@ PointResult run_vss(const Point& point) {
       break;  // a failed solve is not timed again
     }
   }
-  const auto median = [](std::vector<double>& v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 == 1 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-  };
   s.wall_s = median(times);
   s.cpu_s = median(cpu_times);
   // A solve that never produced a number reports NaN rather than zeros.
@@ -277,42 +348,43 @@ PointResult run_vss(const Point& point) {
   const auto shown = [&](double v) { return nothing || closed_form_failed ? nan : v; };
   const inchworm::Regime regime =
       nothing || closed_form_failed ? inchworm::regime_of(in.p) : s.regime;
-  Row row{
-      point.id,
-      in.p.mu,
-      in.p.static_mu(),
-      in.p.F,
-      f_tilde_of(in.p),
-      f_frac_of(in),
-      std::string(inchworm::method_name(in.method)),
-      in.opt.rtol,
-      std::string(in.opt.stop == inchworm::StopRule::kEstimatedError ? "estimate" : "difference"),
-      std::string(in.opt.estimator == inchworm::Estimator::kCycleAverage ? "cycle" : "running"),
-      shown(s.v_ss),
-      shown(s.period),
-      shown(s.c0),
-      static_cast<long long>(regime),
-      shown(s.est_error),
-      shown(s.last_difference),
-      shown(s.contraction),
-      s.strokes,
-      static_cast<long long>(s.converged ? 1 : 0),
-      s.stats.steps,
-      s.stats.rhs_evals,
-      s.wall_s,
-      s.message,
-      std::string(in.p.model == inchworm::SwapModel::kMass ? "dm" : "instant"),
-      in.p.model == inchworm::SwapModel::kMass ? in.p.alpha : nan,
-      static_cast<long long>(s.swap_stopped ? 1 : 0),
-      s.cpu_s,
-      s.stats.guard_evals,
-      s.stats.segments,
-      inchworm::is_simulation(in.method) ? (in.opt.target > 0.0 ? in.opt.target : in.opt.rtol)
-                                         : nan,
-      in.opt.event_tol,
-      in.method == Method::kFixedRk4 ? inchworm::backend_options(in.opt).step : nan,
-      std::string(in.opt.exact_event_times ? "exact" : "located")};
-  PointResult out;
+  VssRow row;
+  row.id = point.id;
+  row.mu = in.p.mu;
+  row.mu_s = in.p.static_mu();
+  row.F = in.p.F;
+  row.f_tilde = f_tilde_of(in.p);
+  row.F_frac = f_frac_of(in);
+  row.method = inchworm::method_name(in.method);
+  row.rtol = in.opt.rtol;
+  row.stop = in.opt.stop == inchworm::StopRule::kEstimatedError ? "estimate" : "difference";
+  row.estimator = in.opt.estimator == inchworm::Estimator::kCycleAverage ? "cycle" : "running";
+  row.v_ss = shown(s.v_ss);
+  row.period = shown(s.period);
+  row.c0 = shown(s.c0);
+  row.regime = static_cast<long long>(regime);
+  row.est_error = shown(s.est_error);
+  row.last_difference = shown(s.last_difference);
+  row.contraction = shown(s.contraction);
+  row.strokes = s.strokes;
+  row.converged = s.converged;
+  row.steps = s.stats.steps;
+  row.rhs_evals = s.stats.rhs_evals;
+  row.wall_s = s.wall_s;
+  row.message = s.message;
+  row.model = in.p.model == inchworm::SwapModel::kMass ? "dm" : "instant";
+  row.alpha = in.p.model == inchworm::SwapModel::kMass ? in.p.alpha : nan;
+  row.swap_stopped = s.swap_stopped;
+  row.cpu_s = s.cpu_s;
+  row.guard_evals = s.stats.guard_evals;
+  row.events = s.stats.segments;
+  row.target = inchworm::is_simulation(in.method)
+                   ? (in.opt.target > 0.0 ? in.opt.target : in.opt.rtol)
+                   : nan;
+  row.event_tol = in.opt.event_tol;
+  row.h = in.method == Method::kFixedRk4 ? inchworm::backend_options(in.opt).step : nan;
+  row.event_times = in.opt.exact_event_times ? "exact" : "located";
+  Rows<VssRow> out;
   out.rows.push_back(std::move(row));
   out.failed = !s.converged;
   if (out.failed) {
@@ -348,15 +420,43 @@ ConvergenceInputs read_convergence(const Point& point) {
   return c;
 }
 
+/// One row per simulated cycle.
+struct ConvergenceRow {
+  long long id = 0;
+  double mu = 0.0;
+  double F = 0.0;
+  std::string method;
+  long long cycle = 0;
+  double cycle_average = 0.0;
+  double running_mean = 0.0;
+  double exact = 0.0;
+  double err_cycle = 0.0;
+  double err_running = 0.0;
+
+  static std::vector<Column<ConvergenceRow>> columns() {
+    using R = ConvergenceRow;
+    return {value("id", &R::id),
+            value("mu", &R::mu),
+            value("F", &R::F, "N"),
+            value("method", &R::method),
+            value("cycle", &R::cycle),
+            value("cycle_average", &R::cycle_average, "m/s"),
+            value("running_mean", &R::running_mean, "m/s"),
+            value("exact", &R::exact, "m/s"),
+            value("err_cycle", &R::err_cycle),
+            value("err_running", &R::err_running)};
+  }
+};
+
 // Simulates `cycles` cycles from rest with the exact backend and no stopping rule, stroke by
 // stroke as inchworm::steady_state_by_simulation does (same arithmetic, so its cycle averages
 // and running mean are the ones the simulation's estimators see). The running mean is the total
 // CoM displacement over the total time since rest, i.e. the cycle averages weighted by the
 // cycle durations. Errors are relative to the closed form: |V − v_ss| / v_ss.
-PointResult run_convergence(const Point& point) {
+Rows<ConvergenceRow> run_convergence(const Point& point) {
   const ConvergenceInputs c = read_convergence(point);
   const Params& p = c.in.p;
-  PointResult out;
+  Rows<ConvergenceRow> out;
   try {
     const double exact = inchworm::steady_state_closed_form(p).v_ss;
     const inchworm::InstantSwapSystem sys(p);
@@ -372,9 +472,8 @@ PointResult run_convergence(const Point& point) {
       total_displacement += a.displacement + b.displacement;
       total_time += a.duration + b.duration;
       const double running = total_displacement / total_time;
-      out.rows.push_back(Row{point.id, p.mu, p.F, std::string("analytic"), cycle, average, running,
-                             exact, std::abs(average - exact) / exact,
-                             std::abs(running - exact) / exact});
+      out.rows.push_back({point.id, p.mu, p.F, "analytic", cycle, average, running, exact,
+                          std::abs(average - exact) / exact, std::abs(running - exact) / exact});
     }
   } catch (const std::exception& e) {
     out.failed = true;
@@ -383,66 +482,19 @@ PointResult run_convergence(const Point& point) {
   return out;
 }
 
-const std::vector<PointFunction>& registry() {
-  static const std::vector<PointFunction> functions = {
-      {"inchworm_vss",
-       "steady-state CoM speed of the inchworm (instant swap or moving dm) by any method (one row "
-       "per point)",
-       {"id",          "mu",           "mu_s",      "F",
-        "f_tilde",     "F_frac",       "method",    "rtol",
-        "stop",        "estimator",    "v_ss",      "period",
-        "c0",          "regime",       "est_error", "last_difference",
-        "contraction", "strokes",      "converged", "steps",
-        "rhs_evals",   "wall_s",       "message",   "model",
-        "alpha",       "swap_stopped", "cpu_s",     "guard_evals",
-        "events",      "target",       "event_tol", "h",
-        "event_times"},
-       [](const Point& p) { (void)read_vss(p); },
-       run_vss},
-      {"inchworm_convergence",
-       "cycle averages and running mean from rest against the closed form (one row per cycle)",
-       {"id", "mu", "F", "method", "cycle", "cycle_average", "running_mean", "exact", "err_cycle",
-        "err_running"},
-       [](const Point& p) { (void)read_convergence(p); },
-       run_convergence},
-  };
-  // The multi-legged model's point functions (thesis ch. 3) live in legged_points.cpp.
-  static const std::vector<PointFunction> all = [] {
-    std::vector<PointFunction> v = functions;
-    for (auto& f : legged_point_functions()) {
-      v.push_back(std::move(f));
-    }
-    v.push_back(legged_cost_point_function());
-    for (auto& f : peer_point_functions()) {
-      v.push_back(std::move(f));
-    }
-    v.push_back(peer_bigant_point_function());
-    v.push_back(scene_cost_point_function());
-    for (auto& f : slope_point_functions()) {
-      v.push_back(std::move(f));
-    }
-    return v;
-  }();
-  return all;
-}
-
 }  // namespace
 
-const PointFunction* find_point_function(std::string_view name) {
-  for (const auto& f : registry()) {
-    if (f.name == name) {
-      return &f;
-    }
-  }
-  return nullptr;
+std::vector<PointKind> inchworm_kinds() {
+  return {make_point_kind<VssRow>(
+              "inchworm_vss",
+              "steady-state CoM speed of the inchworm (instant swap or moving dm) by any method "
+              "(one row per point)",
+              Timed::kNo, [](const Point& p) { (void)read_vss(p); }, run_vss),
+          make_point_kind<ConvergenceRow>(
+              "inchworm_convergence",
+              "cycle averages and running mean from rest against the closed form (one row per "
+              "cycle)",
+              Timed::kNo, [](const Point& p) { (void)read_convergence(p); }, run_convergence)};
 }
 
-std::string point_function_names() {
-  std::string out;
-  for (const auto& f : registry()) {
-    out += (out.empty() ? "" : "|") + f.name;
-  }
-  return out;
-}
-
-}  // namespace slipwalk::sweeps
+}  // namespace slipwalk::sweeps::points

@@ -6,11 +6,12 @@
 #include <cstddef>
 #include <filesystem>
 #include <ostream>
+#include <span>
 #include <string>
 #include <vector>
 
-#include "sweeps/point_functions.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/engine/spec.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -42,15 +43,17 @@ struct RunSummary {
 /// A spec whose points are expanded and checked: nothing has been written yet.
 struct PreparedSweep {
   Spec spec;
-  const PointFunction* function = nullptr;
+  const PointKind* kind = nullptr;
   std::vector<Point> points;
 };
 
-/// Expands and checks every point. Throws core::InputError for a bad spec (unknown kind, a key
-/// the point function does not take, a value out of range at any point).
-[[nodiscard]] PreparedSweep prepare(Spec spec);
+/// Expands and checks every point against its kind, one of `kinds` (sweeps/points/families.hpp
+/// lists them all). Throws core::InputError for a bad spec (unknown kind, a key the kind does
+/// not take, a value out of range at any point).
+[[nodiscard]] PreparedSweep prepare(Spec spec, std::span<const PointKind> kinds);
 
-/// Runs a prepared sweep. Throws core::InputError when --resume finds a checkpoint written for
+/// Runs a prepared sweep. Points of a timed kind run one at a time across every sweep of the
+/// process, whatever `jobs` says (point_kind.hpp). Throws core::InputError when --resume finds a checkpoint written for
 /// another spec, core::ComputationError when a point function throws (the checkpoint is kept).
 RunSummary run(const PreparedSweep& sweep, const RunOptions& options);
 

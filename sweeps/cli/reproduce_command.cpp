@@ -13,11 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "cli/commands.hpp"
+#include "sweeps/cli/commands.hpp"
 #include "core/error.hpp"
-#include "sweeps/runner.hpp"
-#include "sweeps/spec.hpp"
-#include "sweeps/study.hpp"
+#include "sweeps/engine/runner.hpp"
+#include "sweeps/engine/spec.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/engine/study.hpp"
 
 namespace slipwalk::cli {
 
@@ -103,7 +104,7 @@ struct ReproduceCommand {
     for (const auto& dir : dirs) {
       Loaded l{sweeps::load_study(dir), {}};
       for (const auto& spec : l.study.sweeps) {
-        l.sweeps.push_back(sweeps::prepare(sweeps::load_spec(spec, quick)));
+        l.sweeps.push_back(sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds()));
       }
       loaded.push_back(std::move(l));
     }

@@ -11,7 +11,7 @@
 #include "inchworm/trace.hpp"
 #include "inchworm/vss.hpp"
 #include "scene/scene.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/spec.hpp"
 
 namespace slipwalk::sweeps {
 

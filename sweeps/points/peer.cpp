@@ -36,9 +36,11 @@
 #include "core/se2_scan.hpp"
 #include "core/worker_pool.hpp"
 #include "peers/mujoco/legged_spec.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/point_reader.hpp"
-#include "sweeps/random.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/points/legacy.hpp"
+#include "sweeps/engine/point_reader.hpp"
+#include "sweeps/engine/random.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
 #include "peers/mujoco/peer.hpp"
 #endif
@@ -426,8 +428,8 @@ PointResult run_parallel(const Point& point) {
 
 }  // namespace
 
-std::vector<PointFunction> peer_point_functions() {
-  return {{"peer_scaling",
+std::vector<PointKind> points::peer_kinds() {
+  return legacy_kinds({{"peer_scaling",
            "§3.5.3, Fig. 3.13 a: time of one model evaluation (ours, viscous-Coulomb) and of one "
            "MuJoCo mj_step on the same random configurations of a disk robot with N legs (one row "
            "per configuration)",
@@ -435,7 +437,7 @@ std::vector<PointFunction> peer_point_functions() {
           {"parallel_overhead",
            "§3.5.3, Fig. 3.13 b: a hexapod's random trajectories, step increments on M threads, "
            "sequential vs parallel prefix product of the poses (one row per trajectory and M)",
-           kParallelColumns, [](const Point& p) { (void)read_parallel(p); }, run_parallel}};
+           kParallelColumns, [](const Point& p) { (void)read_parallel(p); }, run_parallel}});
 }
 
 }  // namespace slipwalk::sweeps

@@ -4,7 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "cli/commands.hpp"
+#include "sweeps/cli/commands.hpp"
 #include "core/error.hpp"
 
 int main(int argc, char** argv) {

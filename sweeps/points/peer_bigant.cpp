@@ -29,8 +29,10 @@
 #include "contact/spring_support.hpp"
 #include "peers/mujoco/bigant_spec.hpp"
 #include "robots/robots.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/point_reader.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/points/legacy.hpp"
+#include "sweeps/engine/point_reader.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
 #include "peers/mujoco/bigant_peer.hpp"
 #include "peers/mujoco/peer.hpp"
@@ -305,12 +307,13 @@ PointResult run(const Point& point) {
 
 }  // namespace
 
-PointFunction peer_bigant_point_function() {
-  return {"peer_bigant",
+std::vector<PointKind> points::peer_bigant_kinds() {
+  return legacy_kinds({{"peer_bigant",
           "§3.5.4, Fig. 3.14: BigANT along a gait in our model (viscous-Coulomb, Coulomb) and in "
           "MuJoCo driven by the same foot trajectories (one row per sample and source; MuJoCo's "
           "rows carry the feet's tracking RMSE)",
-          columns(), [](const Point& p) { (void)read(p); }, run};
+          columns(), [](const Point& p) { (void)read(p); },
+          [](const Point& p) { return run(p); }}});
 }
 
 }  // namespace slipwalk::sweeps

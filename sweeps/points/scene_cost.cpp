@@ -19,8 +19,10 @@
 
 #include "scene/reference_kernel.hpp"
 #include "scene/scene.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/point_reader.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/points/legacy.hpp"
+#include "sweeps/engine/point_reader.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -173,11 +175,11 @@ PointResult run_point(const Point& point) {
 
 }  // namespace
 
-PointFunction scene_cost_point_function() {
-  return {"scene_cost",
+std::vector<PointKind> points::scene_cost_kinds() {
+  return legacy_kinds({{"scene_cost",
           "issue 8: time per step of BigANT's tripod through the hand-written flat isotropic "
           "viscous kernel and composed scenes with one effect each (one row per case)",
-          kColumns, [](const Point& p) { (void)read_inputs(p); }, run_point};
+          kColumns, [](const Point& p) { (void)read_inputs(p); }, run_point}});
 }
 
 }  // namespace slipwalk::sweeps

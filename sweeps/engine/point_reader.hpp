@@ -10,7 +10,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
-#include "sweeps/spec.hpp"
+#include "sweeps/engine/spec.hpp"
 
 namespace slipwalk::sweeps {
 

@@ -28,9 +28,11 @@
 #include "contact/spring_support.hpp"
 #include "core/csv.hpp"
 #include "friction/solvers.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/point_reader.hpp"
-#include "sweeps/random.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/points/legacy.hpp"
+#include "sweeps/engine/point_reader.hpp"
+#include "sweeps/engine/random.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -423,12 +425,12 @@ PointResult run_cost(const Point& point) {
 
 }  // namespace
 
-PointFunction legged_cost_point_function() {
-  return {"legged_cost",
+std::vector<PointKind> points::legged_cost_kinds() {
+  return legacy_kinds({{"legged_cost",
           "§3.6.1, issues 4 and 5: time per frame and error against a 1e-14 Coulomb reference of "
           "a friction solver (or the support search, the connection, the whole model) on random "
           "frames of a hexapod or a disk robot (one row per point)",
-          kCostColumns, [](const Point& p) { (void)read_cost(p); }, run_cost};
+          kCostColumns, [](const Point& p) { (void)read_cost(p); }, run_cost}});
 }
 
 }  // namespace slipwalk::sweeps

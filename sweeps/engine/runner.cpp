@@ -1,4 +1,4 @@
-#include "sweeps/runner.hpp"
+#include "sweeps/engine/runner.hpp"
 
 #include <gsl/gsl_errno.h>
 
@@ -44,7 +44,7 @@ std::string fingerprint(const PreparedSweep& s) {
     h = (h ^ 0xffU) * 1099511628211ULL;
   };
   mix(s.spec.kind);
-  mix(join(s.function->columns));
+  mix(join(s.kind->column_names()));
   for (const Point& p : s.points) {
     mix(p.to_json().dump());
   }
@@ -66,19 +66,35 @@ std::string format_cell(const Cell& cell) {
   return out.str().substr(1);  // drop the header's newline
 }
 
-/// The columns that hold timings (wall_s, cpu_s, time_*): written as 0 when timing is off.
-std::vector<bool> timing_columns(const std::vector<std::string>& columns) {
+/// The columns that hold timings, from the kind's column table: written as 0 when timing is off.
+std::vector<bool> timing_columns(const std::vector<ColumnInfo>& columns) {
   std::vector<bool> out(columns.size(), false);
   for (std::size_t i = 0; i < columns.size(); ++i) {
-    out[i] = columns[i] == "wall_s" || columns[i] == "cpu_s" || columns[i].starts_with("time_");
+    out[i] = columns[i].timing;
   }
   return out;
+}
+
+/// Held while a point of a timed kind runs: process-wide, so timed points of concurrent sweeps
+/// take turns too.
+std::mutex& timed_points_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+/// A timed kind's point holds the process-wide lock while it runs; any other runs freely.
+PointResult run_point(const PointKind& kind, const Point& point) {
+  if (kind.timed == Timed::kYes) {
+    const std::lock_guard lock(timed_points_mutex());
+    return kind.run(point);
+  }
+  return kind.run(point);
 }
 
 std::string format_rows(const PointResult& r, const std::vector<bool>& timing_column, bool timing) {
   std::string out;
   const std::size_t columns = timing_column.size();
-  for (const Row& row : r.rows) {
+  for (const Cells& row : r.rows) {
     if (row.size() != columns) {
       throw std::logic_error("point function returned " + std::to_string(row.size()) +
                              " cells for " + std::to_string(columns) + " columns");
@@ -193,16 +209,33 @@ std::string utc_now() {
   return buffer;
 }
 
-PreparedSweep prepare(Spec spec) {
+const PointKind* find_point_kind(std::span<const PointKind> kinds, std::string_view name) {
+  for (const PointKind& k : kinds) {
+    if (k.name == name) {
+      return &k;
+    }
+  }
+  return nullptr;
+}
+
+std::string point_kind_names(std::span<const PointKind> kinds) {
+  std::string out;
+  for (const PointKind& k : kinds) {
+    out += (out.empty() ? "" : "|") + k.name;
+  }
+  return out;
+}
+
+PreparedSweep prepare(Spec spec, std::span<const PointKind> kinds) {
   PreparedSweep s;
-  s.function = find_point_function(spec.kind);
-  if (s.function == nullptr) {
+  s.kind = find_point_kind(kinds, spec.kind);
+  if (s.kind == nullptr) {
     throw core::InputError(spec.kind_origin,
-                           "unknown kind '" + spec.kind + "'; expected " + point_function_names());
+                           "unknown kind '" + spec.kind + "'; expected " + point_kind_names(kinds));
   }
   s.points = expand(spec);
   for (const Point& p : s.points) {
-    s.function->check(p);
+    s.kind->check(p);
   }
   s.spec = std::move(spec);
   return s;
@@ -212,9 +245,9 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
   const auto start = Clock::now();
   gsl_set_error_handler_off();  // a GSL failure is a failed point, never an abort()
   const Spec& spec = sweep.spec;
-  const PointFunction& fn = *sweep.function;
+  const PointKind& fn = *sweep.kind;
   const auto n_points = static_cast<long long>(sweep.points.size());
-  const std::string header = join(fn.columns);
+  const std::string header = join(fn.column_names());
   const std::string print = fingerprint(sweep);
   const std::vector<bool> timing_column = timing_columns(fn.columns);
   const std::string label = "[" + spec.study + "/" + spec.name + "] ";
@@ -271,7 +304,7 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
         const Point& point = sweep.points[pending[k]];
         Finished f;
         try {
-          const PointResult r = fn.run(point);
+          const PointResult r = run_point(fn, point);
           f.rows = format_rows(r, timing_column, options.timing);
           f.failed = r.failed;
           f.message = one_line(r.message);
@@ -355,7 +388,7 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
       {"spec_file", spec.path},
       {"quick", spec.quick},
       {"spec", spec.source},
-      {"columns", fn.columns},
+      {"columns", fn.column_names()},
       {"csv", summary.csv.filename().string()},
       {"point_count", n_points},
       {"failed_point_count", summary.failed},

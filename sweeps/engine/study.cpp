@@ -1,4 +1,4 @@
-#include "sweeps/study.hpp"
+#include "sweeps/engine/study.hpp"
 
 #include <toml++/toml.h>
 
@@ -16,8 +16,8 @@
 #include "core/error.hpp"
 #include "core/provenance.hpp"
 #include "scene/run_writer.hpp"
-#include "sweeps/runner.hpp"
-#include "sweeps/toml_util.hpp"
+#include "sweeps/engine/runner.hpp"
+#include "sweeps/engine/toml_util.hpp"
 
 namespace slipwalk::sweeps {
 

@@ -33,9 +33,11 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "friction/solvers.hpp"
-#include "sweeps/point_functions.hpp"
-#include "sweeps/point_reader.hpp"
-#include "sweeps/random.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/points/families.hpp"
+#include "sweeps/points/legacy.hpp"
+#include "sweeps/engine/point_reader.hpp"
+#include "sweeps/engine/random.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -824,8 +826,8 @@ PointResult run_eps(const Point& point) {
 
 }  // namespace
 
-std::vector<PointFunction> legged_point_functions() {
-  return {
+std::vector<PointKind> points::legged_kinds() {
+  return legacy_kinds({
       {"legged_1d",
        "Fig. 3.1: N feet on a line, equal loads, random speeds: Coulomb vs viscous-Coulomb body "
        "velocity against the median and mean (one row per trial)",
@@ -851,7 +853,7 @@ std::vector<PointFunction> legged_point_functions() {
        "Fig. 3.15: relative error of viscous-type friction against Coulomb friction near v = "
        "(|v|, 0) (one row per δv)",
        kEpsColumns, [](const Point& p) { (void)read_eps(p); }, run_eps},
-  };
+  });
 }
 
 }  // namespace slipwalk::sweeps

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/commands.hpp"
+#include "sweeps/cli/commands.hpp"
 #include "connection/local_connection.hpp"
 #include "contact/frame_json.hpp"
 #include "core/atomic_file.hpp"

@@ -1,4 +1,4 @@
-#include "sweeps/toml_util.hpp"
+#include "sweeps/engine/toml_util.hpp"
 
 #include <sstream>
 #include <string>

@@ -1,0 +1,37 @@
+#pragma once
+// The point families: one file per family under sweeps/points/, each contributing its kinds to
+// one explicit list (families.cpp). A new kind is one entry in its family's list; a new family is
+// one file and one line in families.cpp.
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/engine/runner.hpp"
+#include "sweeps/engine/spec.hpp"
+
+namespace slipwalk::sweeps::points {
+
+/// The inchworm of ch. 2: v_ss by any method, convergence from rest (inchworm.cpp).
+[[nodiscard]] std::vector<PointKind> inchworm_kinds();
+/// The multi-legged model of ch. 3: 1-D legs, force maps, support paths, ε errors (legged.cpp).
+[[nodiscard]] std::vector<PointKind> legged_kinds();
+/// The cost and accuracy of the multi-legged model's solvers (legged_cost.cpp).
+[[nodiscard]] std::vector<PointKind> legged_cost_kinds();
+/// The speed comparisons of §3.5.3, Fig. 3.13: MuJoCo peer and parallel steps (peer.cpp).
+[[nodiscard]] std::vector<PointKind> peer_kinds();
+/// The sim-to-sim comparison of §3.5.4, Fig. 3.14: BigANT in MuJoCo (peer_bigant.cpp).
+[[nodiscard]] std::vector<PointKind> peer_bigant_kinds();
+/// What each scene effect costs per step (scene_cost.cpp).
+[[nodiscard]] std::vector<PointKind> scene_cost_kinds();
+/// BigANT up a slope: progress per cycle and the stall slope, §5.2.1 (slope.cpp).
+[[nodiscard]] std::vector<PointKind> slope_kinds();
+
+/// Every point kind of every family, in the order of families.cpp.
+[[nodiscard]] std::span<const PointKind> all_kinds();
+
+/// sweeps::prepare against every kind of every family.
+[[nodiscard]] PreparedSweep prepare(Spec spec);
+
+}  // namespace slipwalk::sweeps::points
