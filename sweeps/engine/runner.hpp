@@ -53,8 +53,9 @@ struct PreparedSweep {
 [[nodiscard]] PreparedSweep prepare(Spec spec, std::span<const PointKind> kinds);
 
 /// Runs a prepared sweep. Points of a timed kind run one at a time across every sweep of the
-/// process, whatever `jobs` says (point_kind.hpp). Throws core::InputError when --resume finds a checkpoint written for
-/// another spec, core::ComputationError when a point function throws (the checkpoint is kept).
+/// process, whatever `jobs` says (point_kind.hpp). Throws core::InputError when --resume finds a
+/// checkpoint written for another spec, core::ComputationError when a point function throws (the
+/// checkpoint is kept).
 RunSummary run(const PreparedSweep& sweep, const RunOptions& options);
 
 /// Paths of a sweep's outputs.
