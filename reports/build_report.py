@@ -33,20 +33,20 @@ SCRIPTS = ["fig2_2", "fig2_3", "regression", "eq2_6", "scaling", "separation", "
            "fig3_15"]
 # The data folder (under --data) each script reads; c.STUDY unless named here. A script whose
 # folder is missing is skipped with a warning (its ledger entries become "not measured"), so a
-# data folder produced before a study existed still builds.
+# data folder from a partial run (`slipwalk reproduce STUDY...`) still builds.
 SCRIPT_STUDY = {"fig2_6": "ch2_dm_swap", "fig2_7": "ch2_dm_swap", "regime_map": "ch2_dm_swap",
                 "fig3_1": "ch3_legged", "fig3_2": "ch3_legged", "fig3_3_4": "ch3_legged",
                 "fig3_15": "ch3_legged"}
 STUDIES = [c.STUDY, "ch2_dm_swap", "ch3_legged"]
 # Figures shown full width (several panels side by side).
 WIDE = {"eq2_6", "fig2_6", "fig2_7", "regime_map", "fig3_1", "fig3_2", "fig3_3_4", "fig3_15"}
-# §3.5.3, Fig. 3.13 (issue 7): MuJoCo as the peer and the parallel overhead, shown in the
+# §3.5.3, Fig. 3.13: MuJoCo as the peer and the parallel overhead, shown in the
 # performance section ([[figure]] part = "performance").
 SCRIPTS.append("fig3_13")
 SCRIPT_STUDY["fig3_13"] = "ch3_peer"
 STUDIES.append("ch3_peer")
 WIDE.add("fig3_13")
-# §3.5.4, Fig. 3.14 (issue 7): BigANT sim to sim, ours against MuJoCo driven by the same feet.
+# §3.5.4, Fig. 3.14: BigANT sim to sim, ours against MuJoCo driven by the same feet.
 SCRIPTS.append("fig3_14")
 SCRIPT_STUDY["fig3_14"] = "ch3_peer"
 WIDE.add("fig3_14")
@@ -79,30 +79,30 @@ VERDICT_CLASS = {
     "needs data we do not have": "nodata",
     "not measured": "bad",
 }
-# The cost-of-accuracy study (studies/cost_of_accuracy, issue 4) has a page of its own,
+# The cost-of-accuracy study (studies/cost_of_accuracy) has a page of its own,
 # cost_of_accuracy.html: its script writes the page's body, the builder wraps it.
 SCRIPTS.append("cost_of_accuracy")
 SCRIPT_STUDY["cost_of_accuracy"] = "cost_of_accuracy"
 STUDIES.append("cost_of_accuracy")
 COST_PAGE = "cost_of_accuracy.html"
-# The multi-legged model (issues 4 and 5): the friction solvers' section of the cost page
+# The multi-legged model (§3.4, §3.6.1): the friction solvers' section of the cost page
 # (cost_friction_body.html) and the per-frame cost in the index's performance section
 # (perf_legged_body.html).
 SCRIPTS += ["cost_friction", "perf_legged"]
 SCRIPT_STUDY.update({"cost_friction": "cost_of_accuracy", "perf_legged": "ch3_legged"})
-# §3.5 walking robots (issue 6): synthetic analogs of Figs. 3.5-3.12 from the scene runs of
+# §3.5 walking robots: synthetic analogs of Figs. 3.5-3.12 from the scene runs of
 # studies/ch3_robots, in the chapter 3 section.
 ROBOT_FIGS = ["fig3_5", "fig3_6_9", "fig3_7_10", "fig3_8", "fig3_11", "fig3_12"]
 SCRIPTS += ROBOT_FIGS
 SCRIPT_STUDY.update({name: "ch3_robots" for name in ROBOT_FIGS})
 STUDIES.append("ch3_robots")
-# Issue 8: what each scene effect costs per step (studies/scene_effects), in the performance
+# What each scene effect costs per step (studies/scene_effects), in the performance
 # section (perf_scene_body.html).
 SCRIPTS.append("perf_scene")
 SCRIPT_STUDY["perf_scene"] = "scene_effects"
 STUDIES.append("scene_effects")
 WIDE.update(ROBOT_FIGS)
-# §5.2 slopes and stairs (issue 8): Figs. 5.2 and 5.3 from studies/ch5_terrain, in the chapter 5
+# §5.2 slopes and stairs: Figs. 5.2 and 5.3 from studies/ch5_terrain, in the chapter 5
 # section ([[figure]] part = "5").
 CH5_FIGS = ["fig5_2", "fig5_3"]
 SCRIPTS += CH5_FIGS

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Cost of accuracy, the multi-legged model: the friction solvers' work-precision (issue 4).
+"""Cost of accuracy, the multi-legged model: the friction solvers' work-precision (thesis §3.4, §3.6.1).
 
 Input: DATA/cost_of_accuracy/friction.csv (studies/cost_of_accuracy/friction.toml, point kind
 legged_cost): for a BigANT-like hexapod and a 50-leg disk robot, on the same random frames,
@@ -383,7 +383,7 @@ sampled once per decade.</p>
 <p class="small">From <code>DATA/cost_of_accuracy/{CSV}</code> (spec
 <code>studies/cost_of_accuracy/friction.toml</code>, point kind <code>legged_cost</code>) by
 <code>reports/{NAME}.py</code>; numbers in <code>values/{NAME}.json</code>. The per-frame cost
-against the number of legs and the issue-5 targets: the index's
+against the number of legs and our per-frame cost targets: the index's
 <a href="index.html#perf-legged">performance section</a>.</p>
 </section>
 """

@@ -10,7 +10,7 @@ block): F_x/Mg and F_y/Mg of both laws and F_z/Mg of the spring support. The vis
 forces carry the ansatz' own units, so — as the thesis does against its F/T measurements — they
 are scaled per frame by the σ that best matches the Coulomb forces' magnitudes (§3.5.1.4). The
 thesis' measured forces (red) need its F/T data; in their place, labelled so, red is MuJoCo's
-BigANT driven by the same feet (DATA/ch3_peer/fig3_14.csv, base runs, issue 7): the floor's
+BigANT driven by the same feet (DATA/ch3_peer/fig3_14.csv, base runs, §3.5.4): the floor's
 forces on each foot from its contacts, over MuJoCo's own ΣF_z. Without that file (a build without
 MuJoCo) the red lines are skipped and the title says so. MuJoCo's F_z shares follow our spring
 support closely; its planar forces stay small, because its feet hang on x/y position actuators of

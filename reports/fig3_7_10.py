@@ -12,7 +12,7 @@ contact, F/Mg, the viscous ones σ-scaled per frame as in §3.5.1.4). A narrow o
 grey means the two laws agree. Rows: tripod (Fig. 3.7), metachronal (Fig. 3.10).
 
 Two more rows take MuJoCo's BigANT driven by the same feet as the measured robot (labelled so;
-DATA/ch3_peer/fig3_14.csv, issue 7), as the thesis' figures do with motion capture and F/T data:
+DATA/ch3_peer/fig3_14.csv, §3.5.4), as the thesis' figures do with motion capture and F/T data:
 red is MuJoCo's signal about its mean, orange and blue each law's prediction minus MuJoCo's, at
 MuJoCo's sample times (velocities of both by the same central differences of the poses sampled
 there; forces of feet MuJoCo and our run both have down, the viscous ones σ-scaled per frame to

@@ -13,7 +13,7 @@ what each law would put there. Also the slip-velocity percentiles the thesis quo
 of v_x of the feet in contact).
 
 MuJoCo's BigANT driven by the same feet stands in, labelled so, for the thesis' measured robot
-(DATA/ch3_peer/fig3_14.csv, metachronal base run; issue 7): red in (B) are its feet in contact
+(DATA/ch3_peer/fig3_14.csv, metachronal base run, §3.5.4): red in (B) are its feet in contact
 carrying at least 2 % of Mg (|F_xy|/F_z of the floor's force from its contacts against the foot
 centre's speed over the floor), and its slip percentiles and feet down go to the values. Without
 that file (a build without MuJoCo) the red points are skipped and the title says so. MuJoCo shows

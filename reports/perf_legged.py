@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Performance of the multi-legged model: per-frame cost against the number of legs (issue 5).
+"""Performance of the multi-legged model: per-frame cost against the number of legs (thesis §3.6.1).
 
 Input: DATA/ch3_legged/cost_scaling.csv (studies/ch3_legged/cost_scaling.toml, point kind
 legged_cost): thread CPU time per frame (median over repeats of the mean over the frames, p25 and
@@ -10,9 +10,9 @@ gap of 1e-9, on random frames of disk robots with N = 3 ... 50 legs and of a Big
 
 Outputs: OUT/perf_legged.png (cost vs N, absolute and relative to N = 3),
 OUT/perf_legged_body.html (the block build_report.py puts into the index's performance section:
-the hexapod's numbers and the issue-5 targets, met or not), OUT/values/perf_legged.json (also the
-ledger's values for thesis §3.6.1). A data folder without cost_scaling.csv (made before this
-study existed) gives a block that says so and no values.
+the hexapod's numbers and our per-frame cost targets, met or not), OUT/values/perf_legged.json (also the
+ledger's values for thesis §3.6.1). A data folder without cost_scaling.csv gives a block that says
+so and no values.
 """
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ LABEL = {k: lab for k, lab, _, _ in METHODS}
 LABEL.update({"coulomb_1e-10": "Coulomb balance, certificate ≤ 1e-10",
               "epsilon_1e-05": "ε-family, single ε = 1e-5 m/s (thesis §3.5.1.3)"})
 FRAME_S = 0.01  # the thesis' frames: 100 Hz (§3.5.1.1)
-# Issue 5's targets (ours, not the thesis'): hexapod viscous ≤ 1 µs, Coulomb 1e-9 ≤ 10 µs and
+# Our per-frame cost targets (the thesis sets none): hexapod viscous ≤ 1 µs, Coulomb 1e-9 ≤ 10 µs and
 # ≤ 10× viscous, growth of the per-frame cost from 3 to 50 legs ≤ ×2.
 TARGET_VISCOUS_NS = 1000.0
 TARGET_COULOMB_NS = 10000.0
@@ -118,7 +118,7 @@ def measure(rows: dict) -> dict:
     v["ratio_model_viscous_hexapod"] = ratio(model, visc)
     v["realtime_factor_model_hexapod"] = ratio(FRAME_S * 1e9, model)
     v["realtime_factor_coulomb_hexapod"] = ratio(FRAME_S * 1e9, coul)
-    # issue 5's targets
+    # our per-frame cost targets
     v["target_viscous_met"] = visc is not None and visc <= TARGET_VISCOUS_NS
     v["target_coulomb_met"] = coul is not None and coul <= TARGET_COULOMB_NS
     v["target_ratio_met"] = (v["ratio_coulomb_viscous_hexapod"] is not None and
@@ -150,7 +150,7 @@ def figure(plt, rows: dict, v: dict, out) -> None:
                 label="hexapod (BigANT-like), at N = 6")
     n_ref = np.array([disk_n[0], disk_n[-1]], float)
     axs[1].plot(n_ref, n_ref / n_ref[0], color="0.6", ls=":", lw=1, label="∝ N")
-    axs[1].axhline(TARGET_GROWTH, color="k", ls="--", lw=0.8, label="issue 5 target: ×2 at N = 50")
+    axs[1].axhline(TARGET_GROWTH, color="k", ls="--", lw=0.8, label="target: ×2 at N = 50")
     down = v.get("disk_down_fraction")
     for ax in axs:
         ax.set_xscale("log")
@@ -223,7 +223,7 @@ def body(v: dict, rows: dict) -> str:
                f"start), {html.escape(str(v.get('compiler')))}; run {v.get('date')}")
     return f"""
 <div class="fig wide" id="perf-legged"><img src="{NAME}.png" alt="per-frame cost vs legs">
-<div class="text"><h3>The multi-legged model: cost per frame (issue 5, thesis §3.6.1)</h3>
+<div class="text"><h3>The multi-legged model: cost per frame (thesis §3.6.1)</h3>
 <p>Thread CPU time per frame on {int(v.get('frames', 0))} random frames per robot (the spring
 support decides which feet are down; hexapod: {c.fmt(v.get('hexapod_contacts_mean'), 3)} feet on
 average), the median of {int(v.get('repeats', 0))} repeats of a loop over all frames, every row
@@ -238,7 +238,7 @@ not grow with N) and the whole model ×{c.fmt(g['model'], 3)}. A constant cost p
 thesis' "virtually no change in execution time", §3.6.1) holds where a fixed overhead per call
 dominates, as in an interpreted implementation; in compiled code the work per foot shows.
 <b>Machine:</b> {machine}.</p>
-<table class='data'><thead><tr><th>issue 5 target</th><th>target</th><th>ours</th><th></th></tr>
+<table class='data'><thead><tr><th>our target</th><th>target</th><th>ours</th><th></th></tr>
 </thead><tbody>{target_rows}</tbody></table>
 <p class="small">Fits time = a + b·N over the disk robots (ns). A growth of at most ×2 from {n0}
 to {n1} legs needs a ≥ {c.fmt(v.get('growth_needs_a_over_b'), 3)} b: a fixed cost per call of

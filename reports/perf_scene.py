@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Performance of composed scenes: what each effect costs per step (issue 8).
+"""Performance of composed scenes: what each effect costs per step.
 
 Input: DATA/scene_effects/scene_cost.csv (studies/scene_effects/scene_cost.toml, point kind
 scene_cost): CPU time per step of BigANT's tripod through the hand-written flat isotropic viscous
@@ -8,7 +8,7 @@ run; per case the median over repeats, the median of the per-repeat ratios to th
 kernel, and the median extra time over the composed flat scene.
 
 Outputs: OUT/perf_scene_body.html (the block build_report.py puts into the index's performance
-section: the table and the issue-8 target, met or not), OUT/values/perf_scene.json. A data folder
+section: the table and the flat scene's target, met or not), OUT/values/perf_scene.json. A data folder
 without scene_cost.csv gives a block that says so and no values.
 """
 from __future__ import annotations
@@ -35,7 +35,7 @@ LABEL = {
     "slope": "+ slope 10° (§5.2.1)",
     "stairs": "+ stairs 0.3 m / 0.12 m (§5.2.2)",
 }
-TARGET_RATIO = 1.05  # issue 8: the flat isotropic viscous scene within 5 % of the hand-written
+TARGET_RATIO = 1.05  # the flat isotropic viscous scene within 5 % of the hand-written
 
 
 def block_missing(path) -> str:
@@ -61,7 +61,7 @@ def body(v: dict, rows: list[dict]) -> str:
     table = "".join(row_html(r) for r in rows)
     return f"""
 <div class="fig wide" id="perf-scene"><div class="text">
-<h3>Scenes: only the effects they call for (issue 8)</h3>
+<h3>Scenes: only the effects they call for</h3>
 <p>CPU time per step of BigANT's tripod ({int(v['steps'])} steps of 0.01 s per run, the median
 of {int(v['repeats'])} repeats, every case once per repeat in one run) through a kernel written
 by hand for the flat isotropic viscous case and through the simulator <code>scene::compose</code>

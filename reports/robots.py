@@ -1,4 +1,4 @@
-"""Shared helpers of the walking-robot figures (thesis §3.5, Figs. 3.5-3.12; issue 6).
+"""Shared helpers of the walking-robot figures (thesis §3.5, Figs. 3.5-3.12).
 
 Their data live in DATA/ch3_robots/<run>.csv (`slipwalk reproduce ch3_robots`: one scene run
 each, the columns of `slipwalk run`, scene/run_writer.hpp) with a sidecar naming the scene,
@@ -58,7 +58,7 @@ class Run:
 
 
 # MuJoCo's BigANT driven by our feet stands in for the robot where the thesis drew motion capture
-# (issue 7): the base runs of studies/ch3_peer/fig3_14.toml (same gait, K, μ as these scenes).
+# (§3.5.4): the base runs of studies/ch3_peer/fig3_14.toml (same gait, K, μ as these scenes).
 MEASURED = "tab:red"
 MEASURED_LABEL = "MuJoCo (as measured)"
 
@@ -110,7 +110,7 @@ def _mujoco_run(t: c.Table, on: np.ndarray) -> dict | None:
 def mujoco_as_measured(data: Path, gait: str) -> dict | None:
     """MuJoCo's base run of `gait` from DATA/ch3_peer/fig3_14.csv: t, x, y, theta and the body
     velocity (vx, vy in the body frame, omega) by central differences of the sampled poses; with
-    per-leg columns (sweeps/peer_bigant_points.cpp) also "legs": {leg: {contact, Fz, Fx, Fy,
+    per-leg columns (sweeps/points/peer_bigant.cpp) also "legs": {leg: {contact, Fz, Fx, Fy,
     slip_x, slip_y}} (forces of the floor on the foot, N, and the foot's velocity over the floor,
     m/s, body frame, as our runs' columns). None when the file or its MuJoCo rows are missing (a
     build without MuJoCo, or ch3_peer not run)."""

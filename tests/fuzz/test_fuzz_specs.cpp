@@ -8,8 +8,8 @@
 
 #include "core/error.hpp"
 #include "sweeps/engine/runner.hpp"
-#include "sweeps/points/families.hpp"
 #include "sweeps/engine/spec.hpp"
+#include "sweeps/points/families.hpp"
 
 namespace slipwalk::sweeps {
 namespace {

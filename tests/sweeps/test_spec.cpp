@@ -8,9 +8,9 @@
 
 #include "core/error.hpp"
 #include "sweeps/engine/runner.hpp"
-#include "sweeps/points/families.hpp"
 #include "sweeps/engine/spec.hpp"
 #include "sweeps/engine/study.hpp"
+#include "sweeps/points/families.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -279,17 +279,18 @@ TEST(Spec, ConvergenceKindNeedsCyclesAndTheExactBackend) {
   const std::string head = "study = \"a\"\nname = \"b\"\nkind = \"inchworm_convergence\"\n";
   EXPECT_NO_THROW(
       (void)points::prepare(parse_spec(head + "[params]\nF = 45.0\nmu = 1.0\ncycles = 10\n", "s")));
-  EXPECT_NE(where_of([&] { (void)points::prepare(parse_spec(head + "[params]\nF = 45.0\n", "s")); }), "");
+  EXPECT_NE(
+      where_of([&] { (void)points::prepare(parse_spec(head + "[params]\nF = 45.0\n", "s")); }), "");
   EXPECT_NE(where_of([&] {
               (void)points::prepare(
                   parse_spec(head + "[params]\nF = 45.0\ncycles = 10\nmethod = \"cvode\"\n", "s"));
             }),
             "");
-  EXPECT_NE(
-      where_of([&] {
-        (void)points::prepare(parse_spec(head + "[params]\nF = 45.0\ncycles = 10\nrtol = 1e-6\n", "s"));
-      }),
-      "");
+  EXPECT_NE(where_of([&] {
+              (void)points::prepare(
+                  parse_spec(head + "[params]\nF = 45.0\ncycles = 10\nrtol = 1e-6\n", "s"));
+            }),
+            "");
 }
 
 TEST(Spec, ForceRanges) {
