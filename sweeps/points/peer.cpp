@@ -30,6 +30,7 @@
 #include <mutex>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "connection/local_connection.hpp"
