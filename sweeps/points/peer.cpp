@@ -1,4 +1,4 @@
-// Point functions of the speed comparisons of thesis §3.5.3 (Fig. 3.13, issue 7):
+// Point functions of the speed comparisons of thesis §3.5.3 (Fig. 3.13):
 //
 //   peer_scaling       Fig. 3.13 a: the cost of one model evaluation (ours: connection::evaluate
 //                      with viscous-Coulomb friction) and of one mj_step of MuJoCo on the same
@@ -15,18 +15,22 @@
 // state before every step (rewinding, a copy of qpos, qvel, ctrl and the warm start, is inside
 // the timed loop; its own cost is reported as time_rewind_ns). Ours and MuJoCo's are timed
 // alternately per configuration, so background load hits both alike. All inputs are built before
-// the clock starts; points of these kinds run one at a time (a mutex), whatever --jobs says.
+// the clock starts. Both kinds are timed (Timed::kYes): the runner runs their points one at a time,
+// process-wide, whatever --jobs says, and holds that for the whole point, not only its timed loops
+// (building another point's configurations on the second core would slow the timed loops down
+// through the shared cache and memory bus). Every measured time, and every number computed from
+// one, is a timing column: written as 0 under --no-timing.
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <ctime>
 #include <iostream>
 #include <memory>
 #include <mutex>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "connection/local_connection.hpp"
@@ -37,15 +41,15 @@
 #include "core/worker_pool.hpp"
 #include "peers/mujoco/legged_spec.hpp"
 #include "sweeps/engine/point_kind.hpp"
-#include "sweeps/points/families.hpp"
-#include "sweeps/points/legacy.hpp"
 #include "sweeps/engine/point_reader.hpp"
 #include "sweeps/engine/random.hpp"
+#include "sweeps/engine/timing.hpp"
+#include "sweeps/points/families.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
 #include "peers/mujoco/peer.hpp"
 #endif
 
-namespace slipwalk::sweeps {
+namespace slipwalk::sweeps::points {
 
 namespace {
 
@@ -58,43 +62,29 @@ constexpr double kHeight = 0.1;              // m: feet this far below the body 
 constexpr double kRadius = 0.3;              // m: the disk's rim (§3.5.3)
 constexpr double kReach = 0.05;              // m: a foot's nominal distance outside its hip
 
-std::mutex& timing_mutex() {
-  static std::mutex m;
-  return m;
-}
-
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-/// CPU time of the whole process (all threads), s. The parallel sections' CPU time tells the
-/// work the threads did, which wall time on a shared machine cannot.
-double process_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 /// ns per call of f: k calls in a row, k so that the batch lasts ≥ min_batch_s (from one
 /// untimed-for-the-result call, which also warms the caches); median over `batches` batches.
 template <class F>
-double time_per_call(F&& f, double min_batch_s, long long batches, std::vector<double>& scratch) {
+double time_per_call(F&& f, double min_batch_s, long long batches) {
   auto t0 = Clock::now();
   f();
   const double once = seconds_since(t0);
   const long long k = std::clamp(
       static_cast<long long>(std::ceil(min_batch_s / std::max(once, 1e-9))), 1LL, 1'000'000LL);
-  scratch.clear();
+  std::vector<double> samples;  // ns per call, one per batch
+  samples.reserve(static_cast<std::size_t>(batches));
   for (long long b = 0; b < batches; ++b) {
     t0 = Clock::now();
     for (long long i = 0; i < k; ++i) {
       f();
     }
-    scratch.push_back(1e9 * seconds_since(t0) / static_cast<double>(k));
+    samples.push_back(1e9 * seconds_since(t0) / static_cast<double>(k));
   }
-  std::sort(scratch.begin(), scratch.end());
-  const std::size_t m = scratch.size();
-  return m % 2 == 1 ? scratch[m / 2] : 0.5 * (scratch[m / 2 - 1] + scratch[m / 2]);
+  return median(std::move(samples));
 }
 
 /// A robot whose body sinks kSinkage with every foot down (K = Mg / (N kSinkage)), μ = 1.
@@ -127,8 +117,7 @@ double draw_height(Random& rng) {
   return f.support.status == contact::SupportSummary::Status::kBalanced;
 }
 
-// --- peer_scaling (Fig. 3.13 a)
-// ---------------------------------------------------------------------
+// --- peer_scaling (Fig. 3.13 a) -----------------------------------------------------------------
 
 const std::vector<std::string_view> kScalingKeys = {
     "N", "configs", "seed", "batches", "min_batch_us", "warmstart", "speed", "spread"};
@@ -185,30 +174,47 @@ contact::Frame draw_config(const contact::Robot& robot, const peer::PeerSpec& sp
   return f;
 }
 
-const std::vector<std::string> kScalingColumns = {"id",
-                                                  "N",
-                                                  "config",
-                                                  "seed",
-                                                  "warmstart",
-                                                  "peer",
-                                                  "contacts",
-                                                  "mujoco_contacts",
-                                                  "mujoco_iter",
-                                                  "unreachable",
-                                                  "time_ours_ns",
-                                                  "time_mujoco_ns",
-                                                  "time_rewind_ns",
-                                                  "message"};
+/// One row per configuration. contacts: our feet down; mujoco_contacts, mujoco_iter: MuJoCo's
+/// contacts and constraint-solver iterations in the step from the configuration; unreachable: feet
+/// the legs' inverse kinematics could not place (0 by construction). Without MuJoCo in the build
+/// the mujoco_* columns are −1, the MuJoCo times NaN, peer "none" and the message says why.
+struct ScalingRow {
+  long long id = 0;
+  long long legs = 0;  ///< N
+  long long config = 0;
+  long long seed = 0;
+  std::string warmstart;
+  std::string peer_name;  ///< "mujoco <version>" or "none"
+  long long contacts = 0;
+  long long mujoco_contacts = -1;
+  long long mujoco_iter = -1;
+  long long unreachable = -1;
+  double time_ours_ns = kNaN;    ///< one connection::evaluate, median of the batches
+  double time_mujoco_ns = kNaN;  ///< one rewind + mj_step, median of the batches
+  double time_rewind_ns = kNaN;  ///< the rewind alone
+  std::string message;
 
-// One row per configuration. contacts: our feet down; mujoco_contacts, mujoco_iter: MuJoCo's
-// contacts and constraint-solver iterations in the step from the configuration; unreachable: feet
-// the legs' inverse kinematics could not place (0 by construction). Without MuJoCo in the build
-// the mujoco_* columns are −1, the MuJoCo times NaN, peer "none" and the message says why.
-PointResult run_scaling(const Point& point) {
+  static std::vector<Column<ScalingRow>> columns() {
+    using R = ScalingRow;
+    return {value("id", &R::id),
+            value("N", &R::legs),
+            value("config", &R::config),
+            value("seed", &R::seed),
+            value("warmstart", &R::warmstart),
+            value("peer", &R::peer_name),
+            value("contacts", &R::contacts),
+            value("mujoco_contacts", &R::mujoco_contacts),
+            value("mujoco_iter", &R::mujoco_iter),
+            value("unreachable", &R::unreachable),
+            timing("time_ours_ns", &R::time_ours_ns, "ns"),
+            timing("time_mujoco_ns", &R::time_mujoco_ns, "ns"),
+            timing("time_rewind_ns", &R::time_rewind_ns, "ns"),
+            value("message", &R::message)};
+  }
+};
+
+Rows<ScalingRow> run_scaling(const Point& point) {
   const ScalingInputs in = read_scaling(point);
-  // The whole point, not only its timed loops: building another point's configurations on the
-  // second core would slow the timed loops down through the shared cache and memory bus.
-  const std::lock_guard<std::mutex> lock(timing_mutex());
   const contact::Robot robot = uniform(in.n);
   const peer::PeerSpec spec = peer::disk_spec(robot, kRadius, kReach, kHeight);
   std::vector<contact::Frame> configs;
@@ -216,9 +222,8 @@ PointResult run_scaling(const Point& point) {
   for (long long i = 0; i < in.configs; ++i) {
     configs.push_back(draw_config(robot, spec, in, i));
   }
-  PointResult out;
-  std::vector<double> scratch;
-  scratch.reserve(static_cast<std::size_t>(in.batches));
+  Rows<ScalingRow> out;
+  out.rows.reserve(static_cast<std::size_t>(in.configs));
 #ifdef SLIPWALK_HAVE_MUJOCO
   const peer::PeerModel model(spec);
   peer::PeerData data(model);
@@ -234,44 +239,48 @@ PointResult run_scaling(const Point& point) {
 #endif
   for (long long i = 0; i < in.configs; ++i) {
     contact::Frame& f = configs[static_cast<std::size_t>(i)];
-    long long down = 0;
+    ScalingRow row;
+    row.id = point.id;
+    row.legs = in.n;
+    row.config = i;
+    row.seed = in.seed;
+    row.warmstart = in.warmstart;
+    row.peer_name = name;
     for (char c : f.contact) {
-      down += c != 0 ? 1 : 0;
+      row.contacts += c != 0 ? 1 : 0;
     }
-    const double ours = time_per_call(
+    row.time_ours_ns = time_per_call(
         [&] { connection::evaluate(robot, f, connection::FrictionLaw::kViscousCoulomb); },
-        in.min_batch_s, in.batches, scratch);
-    double mj = kNaN, rewind = kNaN;
-    long long mj_contacts = -1, mj_iter = -1, unreachable = -1;
+        in.min_batch_s, in.batches);
 #ifdef SLIPWALK_HAVE_MUJOCO
     peer::BodyState body;
     body.z = f.z;
     body.alpha = f.alpha;
     body.beta = f.beta;
     body.v_body = f.v_body;
-    unreachable = peer::set_state(model, data, body, f.q, f.qdot);
+    row.unreachable = peer::set_state(model, data, body, f.q, f.qdot);
     if (in.warmstart == "solution") {
       peer::warm_start(model, data);
     }
     peer::checkpoint(model, data);
-    mj = time_per_call(
+    row.time_mujoco_ns = time_per_call(
         [&] {
           peer::rewind(model, data);
           peer::step(model, data);
         },
-        in.min_batch_s, in.batches, scratch);
-    mj_contacts = peer::read_feet(model, data);
-    mj_iter = peer::solver_iterations(data);
-    rewind = time_per_call([&] { peer::rewind(model, data); }, in.min_batch_s, in.batches, scratch);
+        in.min_batch_s, in.batches);
+    row.mujoco_contacts = peer::read_feet(model, data);
+    row.mujoco_iter = peer::solver_iterations(data);
+    row.time_rewind_ns =
+        time_per_call([&] { peer::rewind(model, data); }, in.min_batch_s, in.batches);
 #endif
-    out.rows.push_back(Row{point.id, static_cast<long long>(in.n), i, in.seed, in.warmstart, name,
-                           down, mj_contacts, mj_iter, unreachable, ours, mj, rewind, message});
+    row.message = message;
+    out.rows.push_back(std::move(row));
   }
   return out;
 }
 
-// --- parallel_overhead (Fig. 3.13 b)
-// ----------------------------------------------------------------
+// --- parallel_overhead (Fig. 3.13 b) ------------------------------------------------------------
 
 const std::vector<std::string_view> kParallelKeys = {
     "trajectories", "steps", "max_threads", "blocks", "seed", "dt", "speed", "spread"};
@@ -324,33 +333,54 @@ void draw_trajectory(const contact::Robot& robot, const ParallelInputs& in, long
   }
 }
 
-const std::vector<std::string> kParallelColumns = {"id",
-                                                   "trajectory",
-                                                   "steps",
-                                                   "threads",
-                                                   "blocks",
-                                                   "unsupported",
-                                                   "end_x",
-                                                   "end_y",
-                                                   "end_theta",
-                                                   "scan_max_diff",
-                                                   "same_as_one_thread",
-                                                   "time_increments_ns",
-                                                   "time_sequential_ns",
-                                                   "time_scan_ns",
-                                                   "time_cpu_increments_ns",
-                                                   "time_cpu_scan_ns"};
+/// One row per (trajectory, M threads). time_increments_ns: the steps' increments exp(v dt) on M
+/// threads (support, connection and viscous-Coulomb balance per step); time_sequential_ns: their
+/// sequential product (one thread, as in the thesis); time_scan_ns: the blocked parallel prefix
+/// product on M threads; time_cpu_*: the process's CPU time (all threads) in those two sections.
+/// end_*: the last pose of the sequential product; scan_max_diff: the largest
+/// |Δx| + |Δy| + |Δθ| between the two products over all poses; same_as_one_thread: 1 if both
+/// products' last poses equal the one-thread run's to the bit.
+struct ParallelRow {
+  long long id = 0;
+  long long trajectory = 0;
+  long long steps = 0;
+  long long threads = 0;  ///< M
+  long long blocks = 0;
+  long long unsupported = 0;
+  double end_x = 0.0;
+  double end_y = 0.0;
+  double end_theta = 0.0;
+  double scan_max_diff = 0.0;  ///< m and rad summed, as a bound on both
+  bool same_as_one_thread = false;
+  double time_increments_ns = 0.0;
+  double time_sequential_ns = 0.0;
+  double time_scan_ns = 0.0;
+  double time_cpu_increments_ns = 0.0;
+  double time_cpu_scan_ns = 0.0;
 
-// One row per (trajectory, M threads). time_increments_ns: the steps' increments exp(v dt) on M
-// threads (support, connection and viscous-Coulomb balance per step); time_sequential_ns: their
-// sequential product (one thread, as in the thesis); time_scan_ns: the blocked parallel prefix
-// product on M threads; time_cpu_*: the process's CPU time (all threads) in those two sections.
-// end_*: the last pose of the sequential product; scan_max_diff: the
-// largest |Δx| + |Δy| + |Δθ| between the two products over all poses; same_as_one_thread: 1 if
-// both products' last poses equal the one-thread run's to the bit.
-PointResult run_parallel(const Point& point) {
+  static std::vector<Column<ParallelRow>> columns() {
+    using R = ParallelRow;
+    return {value("id", &R::id),
+            value("trajectory", &R::trajectory),
+            value("steps", &R::steps),
+            value("threads", &R::threads),
+            value("blocks", &R::blocks),
+            value("unsupported", &R::unsupported),
+            value("end_x", &R::end_x, "m"),
+            value("end_y", &R::end_y, "m"),
+            value("end_theta", &R::end_theta, "rad"),
+            value("scan_max_diff", &R::scan_max_diff),
+            value("same_as_one_thread", &R::same_as_one_thread),
+            timing("time_increments_ns", &R::time_increments_ns, "ns"),
+            timing("time_sequential_ns", &R::time_sequential_ns, "ns"),
+            timing("time_scan_ns", &R::time_scan_ns, "ns"),
+            timing("time_cpu_increments_ns", &R::time_cpu_increments_ns, "ns"),
+            timing("time_cpu_scan_ns", &R::time_cpu_scan_ns, "ns")};
+  }
+};
+
+Rows<ParallelRow> run_parallel(const Point& point) {
   const ParallelInputs in = read_parallel(point);
-  const std::lock_guard<std::mutex> lock(timing_mutex());  // as in run_scaling
   const contact::Robot robot = uniform(6);
   connection::StepBatch batch;
   batch.q.resize(3, 6 * in.steps);
@@ -364,9 +394,9 @@ PointResult run_parallel(const Point& point) {
     pools.push_back(std::make_unique<core::WorkerPool>(m));
   }
   contact::Frame f(robot);
-  PointResult out;
+  Rows<ParallelRow> out;
   const auto threads = static_cast<std::size_t>(in.max_threads);
-  std::vector<Row> rows(threads);
+  std::vector<ParallelRow> rows(threads);
   std::vector<core::Pose2> end_seq(threads), end_scan(threads);
   for (long long t = 0; t < in.trajectories; ++t) {
     draw_trajectory(robot, in, t, f, batch);
@@ -394,32 +424,30 @@ PointResult run_parallel(const Point& point) {
         diff = std::max(diff, std::abs(seq[k].x - scan[k].x) + std::abs(seq[k].y - scan[k].y) +
                                   std::abs(seq[k].theta - scan[k].theta));
       }
-      const long long unsupported = data.unsupported();
       end_seq[um] = seq.back();
       end_scan[um] = scan.back();
-      const core::Pose2& e = seq.back();
-      rows[um] = Row{point.id,
-                     t,
-                     in.steps,
-                     static_cast<long long>(m),
-                     static_cast<long long>(in.blocks),
-                     unsupported,
-                     e.x,
-                     e.y,
-                     e.theta,
-                     diff,
-                     0LL,
-                     1e9 * t_inc,
-                     1e9 * t_seq,
-                     1e9 * t_scan,
-                     1e9 * c_inc,
-                     1e9 * c_scan};
+      ParallelRow& row = rows[um];
+      row.id = point.id;
+      row.trajectory = t;
+      row.steps = in.steps;
+      row.threads = m;
+      row.blocks = in.blocks;
+      row.unsupported = data.unsupported();
+      row.end_x = seq.back().x;
+      row.end_y = seq.back().y;
+      row.end_theta = seq.back().theta;
+      row.scan_max_diff = diff;
+      row.time_increments_ns = 1e9 * t_inc;
+      row.time_sequential_ns = 1e9 * t_seq;
+      row.time_scan_ns = 1e9 * t_scan;
+      row.time_cpu_increments_ns = 1e9 * c_inc;
+      row.time_cpu_scan_ns = 1e9 * c_scan;
     }
     const auto same = [](const core::Pose2& a, const core::Pose2& b) {
       return a.x == b.x && a.y == b.y && a.theta == b.theta;
     };
     for (std::size_t m = 0; m < threads; ++m) {
-      rows[m][10] = same(end_seq[m], end_seq[0]) && same(end_scan[m], end_scan[0]) ? 1LL : 0LL;
+      rows[m].same_as_one_thread = same(end_seq[m], end_seq[0]) && same(end_scan[m], end_scan[0]);
       out.rows.push_back(rows[m]);
     }
   }
@@ -428,16 +456,19 @@ PointResult run_parallel(const Point& point) {
 
 }  // namespace
 
-std::vector<PointKind> points::peer_kinds() {
-  return legacy_kinds({{"peer_scaling",
-           "§3.5.3, Fig. 3.13 a: time of one model evaluation (ours, viscous-Coulomb) and of one "
-           "MuJoCo mj_step on the same random configurations of a disk robot with N legs (one row "
-           "per configuration)",
-           kScalingColumns, [](const Point& p) { (void)read_scaling(p); }, run_scaling},
-          {"parallel_overhead",
-           "§3.5.3, Fig. 3.13 b: a hexapod's random trajectories, step increments on M threads, "
-           "sequential vs parallel prefix product of the poses (one row per trajectory and M)",
-           kParallelColumns, [](const Point& p) { (void)read_parallel(p); }, run_parallel}});
+std::vector<PointKind> peer_kinds() {
+  return {make_point_kind<ScalingRow>(
+              "peer_scaling",
+              "§3.5.3, Fig. 3.13 a: time of one model evaluation (ours, viscous-Coulomb) and of "
+              "one MuJoCo mj_step on the same random configurations of a disk robot with N legs "
+              "(one row per configuration)",
+              Timed::kYes, [](const Point& p) { (void)read_scaling(p); }, run_scaling),
+          make_point_kind<ParallelRow>(
+              "parallel_overhead",
+              "§3.5.3, Fig. 3.13 b: a hexapod's random trajectories, step increments on M "
+              "threads, sequential vs parallel prefix product of the poses (one row per "
+              "trajectory and M)",
+              Timed::kYes, [](const Point& p) { (void)read_parallel(p); }, run_parallel)};
 }
 
-}  // namespace slipwalk::sweeps
+}  // namespace slipwalk::sweeps::points

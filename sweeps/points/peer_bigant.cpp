@@ -1,4 +1,4 @@
-// Point function of the sim-to-sim accuracy comparison of thesis §3.5.4 (Fig. 3.14, issue 7):
+// Point function of the sim-to-sim accuracy comparison of thesis §3.5.4 (Fig. 3.14):
 //
 //   peer_bigant  BigANT walking a gait (tripod or metachronal) in our model (viscous-Coulomb and
 //                Coulomb, connection::integrate) and in MuJoCo (lib/peers/mujoco/bigant_peer: a
@@ -18,9 +18,13 @@
 // friction and dynamics, not two different suspensions. A point with ours = "none" runs MuJoCo
 // only (the sensitivity blocks, which vary MuJoCo's own parameters).
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <iostream>
+#include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,15 +34,14 @@
 #include "peers/mujoco/bigant_spec.hpp"
 #include "robots/robots.hpp"
 #include "sweeps/engine/point_kind.hpp"
-#include "sweeps/points/families.hpp"
-#include "sweeps/points/legacy.hpp"
 #include "sweeps/engine/point_reader.hpp"
+#include "sweeps/points/families.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
 #include "peers/mujoco/bigant_peer.hpp"
 #include "peers/mujoco/peer.hpp"
 #endif
 
-namespace slipwalk::sweeps {
+namespace slipwalk::sweeps::points {
 
 namespace {
 
@@ -108,96 +111,148 @@ robots::Walker walker(const Inputs& in) {
   return w;
 }
 
-const std::vector<std::string> kBaseColumns = {"id",
-                                               "gait",
-                                               "source",
-                                               "label",
-                                               "mu",
-                                               "timestep",
-                                               "solref_timeconst",
-                                               "solref_dampratio",
-                                               "kp_xy",
-                                               "kp_z",
-                                               "K",
-                                               "lead",
-                                               "t",
-                                               "x",
-                                               "y",
-                                               "theta",
-                                               "z",
-                                               "contacts",
-                                               "Fz_sum",
-                                               "rmse_x",
-                                               "rmse_y",
-                                               "rmse_z",
-                                               "rmse_z_swing",
-                                               "rmse_xy_foot_max",
-                                               "mean_contacts",
-                                               "max_Fz_error",
-                                               "peer",
-                                               "message"};
-constexpr std::size_t kMessage = 27;  // index of "message"; per-leg columns follow it
-const std::vector<std::string_view> kLegColumns = {"contact_", "Fz_",     "Fx_",
-                                                   "Fy_",      "slip_x_", "slip_y_"};
+/// BigANT's legs (robots::bigant_tripod and bigant_metachronal alike): the per-leg column groups.
+constexpr std::size_t kBigAntLegs = 6;
 
-/// The base columns, then kLegColumns for each of BigANT's legs (both gaits name them alike).
-std::vector<std::string> columns() {
-  std::vector<std::string> out = kBaseColumns;
-  for (const std::string& leg : robots::bigant_tripod().leg_names) {
-    for (std::string_view c : kLegColumns) {
-      out.push_back(std::string(c) + leg);
-    }
+/// A per-leg group with no data: NaN for every leg.
+constexpr std::array<double, kBigAntLegs> kNoLegData = [] {
+  std::array<double, kBigAntLegs> a{};
+  a.fill(std::numeric_limits<double>::quiet_NaN());
+  return a;
+}();
+
+/// BigANT's leg names (HL, ML, …), checked against kBigAntLegs.
+std::vector<std::string> bigant_leg_names() {
+  std::vector<std::string> names = robots::bigant_tripod().leg_names;
+  if (names.size() != kBigAntLegs) {
+    throw std::logic_error("peer_bigant: BigANT has " + std::to_string(names.size()) +
+                           " legs, the per-leg columns are sized for " +
+                           std::to_string(kBigAntLegs));
   }
-  return out;
+  return names;
 }
 
-Row row(const Point& point, const Inputs& in, const std::string& source, double t,
-        const core::Pose2& pose, double z, long long contacts, double Fz_sum) {
-  return Row{point.id,
-             in.gait,
-             source,
-             in.label,
-             in.mu,
-             in.timestep,
-             in.solref_timeconst,
-             in.solref_dampratio,
-             in.kp_xy,
-             in.kp_z,
-             in.K,
-             in.lead ? 1LL : 0LL,
-             t,
-             pose.x,
-             pose.y,
-             pose.theta,
-             z,
-             contacts,
-             Fz_sum,
-             kNaN,
-             kNaN,
-             kNaN,
-             kNaN,
-             kNaN,
-             kNaN,
-             kNaN,
-             std::string("none"),
-             std::string()};
-}
+/// One row per sample time and source. The tracking columns (rmse_*, mean_contacts,
+/// max_Fz_error) are MuJoCo's and NaN in our rows; the per-leg groups are MuJoCo's and NaN in our
+/// rows and wherever MuJoCo was not run.
+struct BigAntRow {
+  long long id = 0;
+  std::string gait;
+  std::string source;  ///< ours_viscous, ours_coulomb or mujoco
+  std::string label;
+  double mu = 0.0;
+  double timestep = 0.0;
+  double solref_timeconst = 0.0;
+  double solref_dampratio = 0.0;
+  double kp_xy = 0.0;
+  double kp_z = 0.0;
+  double K = 0.0;
+  bool lead = false;
+  double t = 0.0;
+  double x = 0.0;
+  double y = 0.0;
+  double theta = 0.0;
+  double z = 0.0;
+  long long contacts = 0;
+  double Fz_sum = 0.0;
+  double rmse_x = kNaN;
+  double rmse_y = kNaN;
+  double rmse_z = kNaN;
+  double rmse_z_swing = kNaN;
+  double rmse_xy_foot_max = kNaN;
+  double mean_contacts = kNaN;
+  double max_Fz_error = kNaN;  ///< max |ΣF_z − Mg| / Mg
+  std::string peer_name = "none";
+  std::string message;
+  // Per leg, in robots::bigant_tripod().leg_names' order.
+  std::array<double, kBigAntLegs> contact = kNoLegData;  ///< 1 in contact, 0 not
+  std::array<double, kBigAntLegs> Fz = kNoLegData;       ///< N, floor on foot
+  std::array<double, kBigAntLegs> Fx = kNoLegData;       ///< N, chassis yaw frame
+  std::array<double, kBigAntLegs> Fy = kNoLegData;       ///< N, chassis yaw frame
+  std::array<double, kBigAntLegs> slip_x = kNoLegData;   ///< m/s, foot over the floor
+  std::array<double, kBigAntLegs> slip_y = kNoLegData;   ///< m/s
 
-/// Appends the per-leg columns as NaN: our rows, or MuJoCo's when it was not run.
-void append_nan_legs(Row& r, int legs) {
-  r.insert(r.end(), kLegColumns.size() * static_cast<std::size_t>(legs), Cell{kNaN});
+  static std::vector<Column<BigAntRow>> columns() {
+    using R = BigAntRow;
+    std::vector<Column<R>> out = {value("id", &R::id),
+                                  value("gait", &R::gait),
+                                  value("source", &R::source),
+                                  value("label", &R::label),
+                                  value("mu", &R::mu),
+                                  value("timestep", &R::timestep, "s"),
+                                  value("solref_timeconst", &R::solref_timeconst, "s"),
+                                  value("solref_dampratio", &R::solref_dampratio),
+                                  value("kp_xy", &R::kp_xy, "N/m"),
+                                  value("kp_z", &R::kp_z, "N/m"),
+                                  value("K", &R::K, "N/m"),
+                                  value("lead", &R::lead),
+                                  value("t", &R::t, "s"),
+                                  value("x", &R::x, "m"),
+                                  value("y", &R::y, "m"),
+                                  value("theta", &R::theta, "rad"),
+                                  value("z", &R::z, "m"),
+                                  value("contacts", &R::contacts),
+                                  value("Fz_sum", &R::Fz_sum, "N"),
+                                  value("rmse_x", &R::rmse_x, "m"),
+                                  value("rmse_y", &R::rmse_y, "m"),
+                                  value("rmse_z", &R::rmse_z, "m"),
+                                  value("rmse_z_swing", &R::rmse_z_swing, "m"),
+                                  value("rmse_xy_foot_max", &R::rmse_xy_foot_max, "m"),
+                                  value("mean_contacts", &R::mean_contacts),
+                                  value("max_Fz_error", &R::max_Fz_error),
+                                  value("peer", &R::peer_name),
+                                  value("message", &R::message)};
+    const std::vector<std::string> legs = bigant_leg_names();
+    for (std::size_t k = 0; k < kBigAntLegs; ++k) {
+      const std::string& leg = legs[k];
+      out.push_back(value_at("contact_" + leg, &R::contact, k));
+      out.push_back(value_at("Fz_" + leg, &R::Fz, k, "N"));
+      out.push_back(value_at("Fx_" + leg, &R::Fx, k, "N"));
+      out.push_back(value_at("Fy_" + leg, &R::Fy, k, "N"));
+      out.push_back(value_at("slip_x_" + leg, &R::slip_x, k, "m/s"));
+      out.push_back(value_at("slip_y_" + leg, &R::slip_y, k, "m/s"));
+    }
+    return out;
+  }
+};
+
+/// A row's inputs and pose; the tracking and per-leg columns stay NaN.
+BigAntRow base_row(const Point& point, const Inputs& in, const std::string& source, double t,
+                   const core::Pose2& pose, double z, long long contacts, double Fz_sum) {
+  BigAntRow r;
+  r.id = point.id;
+  r.gait = in.gait;
+  r.source = source;
+  r.label = in.label;
+  r.mu = in.mu;
+  r.timestep = in.timestep;
+  r.solref_timeconst = in.solref_timeconst;
+  r.solref_dampratio = in.solref_dampratio;
+  r.kp_xy = in.kp_xy;
+  r.kp_z = in.kp_z;
+  r.K = in.K;
+  r.lead = in.lead;
+  r.t = t;
+  r.x = pose.x;
+  r.y = pose.y;
+  r.theta = pose.theta;
+  r.z = z;
+  r.contacts = contacts;
+  r.Fz_sum = Fz_sum;
+  return r;
 }
 
 #ifdef SLIPWALK_HAVE_MUJOCO
-/// Appends MuJoCo's per-leg columns from `data` (bigant_read_legs), in kLegColumns' order.
-void append_mujoco_legs(Row& r, const peer::BigAntData& data) {
-  for (Eigen::Index k = 0; k < data.Fz.size(); ++k) {
-    r.emplace_back(static_cast<long long>(data.contact[static_cast<std::size_t>(k)] != 0));
-    r.emplace_back(data.Fz(k));
-    r.emplace_back(data.Fxy(0, k));
-    r.emplace_back(data.Fxy(1, k));
-    r.emplace_back(data.slip(0, k));
-    r.emplace_back(data.slip(1, k));
+/// MuJoCo's per-leg columns from `data` (bigant_read_legs).
+void set_mujoco_legs(BigAntRow& r, const peer::BigAntData& data) {
+  for (std::size_t k = 0; k < kBigAntLegs; ++k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    r.contact[k] = data.contact[k] != 0 ? 1.0 : 0.0;
+    r.Fz[k] = data.Fz(i);
+    r.Fx[k] = data.Fxy(0, i);
+    r.Fy[k] = data.Fxy(1, i);
+    r.slip_x[k] = data.slip(0, i);
+    r.slip_y[k] = data.slip(1, i);
   }
 }
 #endif
@@ -205,7 +260,7 @@ void append_mujoco_legs(Row& r, const peer::BigAntData& data) {
 /// Our model along the gait, from the origin, K and μ as the point says; a row every sample.
 template <class Law>
 void run_ours(const Point& point, const Inputs& in, const robots::Walker& w, const Law& law,
-              const std::string& source, PointResult& out) {
+              const std::string& source, Rows<BigAntRow>& out) {
   contact::Robot robot = w.robot;
   robot.K.setConstant(in.K);
   connection::TrajectoryOptions options;
@@ -213,32 +268,37 @@ void run_ours(const Point& point, const Inputs& in, const robots::Walker& w, con
   options.steps = std::llround(in.duration / in.dt);
   const long long every = std::max(1LL, std::llround(in.sample / in.dt));
   connection::TrajectoryData data(robot);
-  const auto summary = connection::integrate(
-      robot, w.feet, options, law, connection::NoFilter{}, data,
-      [&](const connection::TrajectoryStep& s) {
-        if (s.n % every != 0 && s.n != options.steps) {
-          return;
-        }
-        long long down = 0;
-        for (char c : s.frame.contact) {
-          down += c != 0 ? 1 : 0;
-        }
-        out.rows.push_back(row(point, in, source, s.t, s.pose, s.frame.z, down, s.frame.Fz.sum()));
-        append_nan_legs(out.rows.back(), robot.legs());
-      });
+  const auto summary =
+      connection::integrate(robot, w.feet, options, law, connection::NoFilter{}, data,
+                            [&](const connection::TrajectoryStep& s) {
+                              if (s.n % every != 0 && s.n != options.steps) {
+                                return;
+                              }
+                              long long down = 0;
+                              for (char c : s.frame.contact) {
+                                down += c != 0 ? 1 : 0;
+                              }
+                              out.rows.push_back(base_row(point, in, source, s.t, s.pose, s.frame.z,
+                                                          down, s.frame.Fz.sum()));
+                            });
   if (!summary.message.empty()) {
-    for (Row& r : out.rows) {
-      if (std::get<std::string>(r[2]) == source) {
-        r[kMessage] = summary.message;
+    for (BigAntRow& r : out.rows) {
+      if (r.source == source) {
+        r.message = summary.message;
       }
     }
   }
 }
 
-PointResult run(const Point& point) {
+Rows<BigAntRow> run(const Point& point) {
   const Inputs in = read(point);
   const robots::Walker w = walker(in);
-  PointResult out;
+  if (w.robot.legs() != static_cast<int>(kBigAntLegs)) {
+    throw std::logic_error("peer_bigant: the walker has " + std::to_string(w.robot.legs()) +
+                           " legs, the per-leg columns are sized for " +
+                           std::to_string(kBigAntLegs));
+  }
+  Rows<BigAntRow> out;
   if (in.ours) {
     run_ours(point, in, w, connection::ViscousCoulombKernel{}, "ours_viscous", out);
     run_ours(point, in, w, connection::CoulombKernel{}, "ours_coulomb", out);
@@ -269,23 +329,23 @@ PointResult run(const Point& point) {
   const std::size_t first = out.rows.size();
   const auto summary = peer::bigant_drive(
       model, data, w.feet, f.z, f.alpha, f.beta, options, [&](const peer::BigAntSample& s) {
-        out.rows.push_back(row(point, in, "mujoco", s.t, s.pose, s.z, s.contacts, s.Fz_sum));
-        append_mujoco_legs(out.rows.back(), data);
+        out.rows.push_back(base_row(point, in, "mujoco", s.t, s.pose, s.z, s.contacts, s.Fz_sum));
+        set_mujoco_legs(out.rows.back(), data);
       });
   const Eigen::Vector3d rmse = summary.tracking.rmse();
   const Eigen::Matrix3Xd per_foot = summary.tracking.rmse_per_foot();
   const double xy_foot_max = per_foot.topRows<2>().colwise().norm().maxCoeff();
   const std::string name = "mujoco " + peer::version();
   for (std::size_t i = first; i < out.rows.size(); ++i) {
-    Row& r = out.rows[i];
-    r[19] = rmse(0);
-    r[20] = rmse(1);
-    r[21] = rmse(2);
-    r[22] = summary.tracking.swing_z_rmse();
-    r[23] = xy_foot_max;
-    r[24] = summary.mean_contacts;
-    r[25] = summary.max_Fz_error;
-    r[26] = name;
+    BigAntRow& r = out.rows[i];
+    r.rmse_x = rmse(0);
+    r.rmse_y = rmse(1);
+    r.rmse_z = rmse(2);
+    r.rmse_z_swing = summary.tracking.swing_z_rmse();
+    r.rmse_xy_foot_max = xy_foot_max;
+    r.mean_contacts = summary.mean_contacts;
+    r.max_Fz_error = summary.max_Fz_error;
+    r.peer_name = name;
   }
 #else
   const std::string message =
@@ -295,11 +355,10 @@ PointResult run(const Point& point) {
                  [&] { std::cerr << "slipwalk: warning: peer_bigant: " << message << '\n'; });
   if (out.rows.empty()) {  // MuJoCo only was asked for: one row that says why there is none
     out.rows.push_back(
-        row(point, in, "mujoco", kNaN, core::Pose2{kNaN, kNaN, kNaN}, kNaN, -1, kNaN));
-    append_nan_legs(out.rows.back(), w.robot.legs());
+        base_row(point, in, "mujoco", kNaN, core::Pose2{kNaN, kNaN, kNaN}, kNaN, -1, kNaN));
   }
-  for (Row& r : out.rows) {
-    r[kMessage] = message;
+  for (BigAntRow& r : out.rows) {
+    r.message = message;
   }
 #endif
   return out;
@@ -307,13 +366,13 @@ PointResult run(const Point& point) {
 
 }  // namespace
 
-std::vector<PointKind> points::peer_bigant_kinds() {
-  return legacy_kinds({{"peer_bigant",
-          "§3.5.4, Fig. 3.14: BigANT along a gait in our model (viscous-Coulomb, Coulomb) and in "
-          "MuJoCo driven by the same foot trajectories (one row per sample and source; MuJoCo's "
-          "rows carry the feet's tracking RMSE)",
-          columns(), [](const Point& p) { (void)read(p); },
-          [](const Point& p) { return run(p); }}});
+std::vector<PointKind> peer_bigant_kinds() {
+  return {make_point_kind<BigAntRow>(
+      "peer_bigant",
+      "§3.5.4, Fig. 3.14: BigANT along a gait in our model (viscous-Coulomb, Coulomb) and in "
+      "MuJoCo driven by the same foot trajectories (one row per sample and source; MuJoCo's "
+      "rows carry the feet's tracking RMSE)",
+      Timed::kNo, [](const Point& p) { (void)read(p); }, run)};
 }
 
-}  // namespace slipwalk::sweeps
+}  // namespace slipwalk::sweeps::points

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
@@ -325,6 +326,13 @@ TEST(BigAntPeer, PointGivesRowsOfEverySource) {
       "[\"tripod\", \"metachronal\"]\n");
   ASSERT_EQ(points.size(), 2u);
   const auto col = [&](const std::string& name) { return test_support::column(*fn, name); };
+  // No measured times: not a timed kind, no timing column; every column named once.
+  EXPECT_EQ(fn->timed, sweeps::Timed::kNo);
+  const std::vector<std::string> names = fn->column_names();
+  for (const sweeps::ColumnInfo& c : fn->columns) {
+    EXPECT_FALSE(c.timing) << c.name;
+    EXPECT_EQ(std::count(names.begin(), names.end(), c.name), 1) << c.name;
+  }
   for (const auto& p : points) {
     fn->check(p);
     const sweeps::PointResult r = fn->run(p);
@@ -339,16 +347,23 @@ TEST(BigAntPeer, PointGivesRowsOfEverySource) {
         EXPECT_LT(std::get<double>(row[col("rmse_x")]), 0.01);
         // The per-leg columns add up to the row's totals.
         double Fz = 0.0;
-        long long down = 0;
+        double down = 0.0;
         for (const std::string& leg : robots::bigant_tripod().leg_names) {
           Fz += std::get<double>(row[col("Fz_" + leg)]);
-          down += std::get<long long>(row[col("contact_" + leg)]);
+          const double contact = std::get<double>(row[col("contact_" + leg)]);
+          EXPECT_TRUE(contact == 0.0 || contact == 1.0) << leg << ": " << contact;
+          down += contact;
           EXPECT_TRUE(std::isfinite(std::get<double>(row[col("slip_x_" + leg)])));
         }
         EXPECT_NEAR(Fz, std::get<double>(row[col("Fz_sum")]), 1e-9);
-        EXPECT_EQ(down, std::get<long long>(row[col("contacts")]));
+        EXPECT_EQ(down, static_cast<double>(std::get<long long>(row[col("contacts")])));
       } else {
-        EXPECT_TRUE(std::isnan(std::get<double>(row[col("Fx_HL")])));
+        // Our rows carry no per-leg data: every leg's group is NaN.
+        for (const std::string& leg : robots::bigant_tripod().leg_names) {
+          for (const char* group : {"contact_", "Fz_", "Fx_", "Fy_", "slip_x_", "slip_y_"}) {
+            EXPECT_TRUE(std::isnan(std::get<double>(row[col(group + leg)]))) << group << leg;
+          }
+        }
       }
     }
     EXPECT_EQ(ours, 2 * 3);  // t = 0, 0.5, 1 for both laws

@@ -2,8 +2,8 @@
 // kinematics, workspaces, MJCF), and with MuJoCo: the model compiles, MuJoCo's own forward
 // kinematics puts the feet where our configuration has them, its contacts are our contact set,
 // a robot standing still carries its weight (Σ normal force = Mg), friction opposes sliding, and
-// the peer_scaling point gives sane rows. Tests that need MuJoCo are skipped, saying so, in a
-// build without it.
+// the peer_scaling point gives sane rows, the same values (timings aside) when run again. Tests
+// that need MuJoCo are skipped, saying so, in a build without it.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -288,6 +288,9 @@ TEST(MujocoPeer, ScalingPointGivesSaneRows) {
 #endif
     }
     EXPECT_GE(same_contacts, 18);  // the rare foot within 1e-4 m of the floor may differ
+    // Run again: every value column (MuJoCo's contacts and iterations included) is the same to
+    // the bit, so the CSV under --no-timing is.
+    EXPECT_EQ(test_support::first_value_difference(*fn, r, fn->run(p)), "");
   }
 }
 

@@ -1,11 +1,15 @@
 #pragma once
 // Shared by the tests of sweep point functions: a spec's points from the body of a study file,
-// a point kind by name, and a column's index in its rows (throwing, so that a renamed
-// column fails the test instead of reading past the row).
+// a point kind by name, a column's index in its rows (throwing, so that a renamed column fails
+// the test instead of reading past the row), and the first difference between two runs of a
+// point outside its timing columns.
 #include <algorithm>
+#include <bit>
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "sweeps/engine/point_kind.hpp"
@@ -29,12 +33,41 @@ inline const sweeps::PointKind& point_kind(const std::string& kind) {
 }
 
 inline std::size_t column(const sweeps::PointKind& f, const std::string& name) {
-  const auto it = std::find_if(f.columns.begin(), f.columns.end(),
-                               [&](const sweeps::ColumnInfo& c) { return c.name == name; });
-  if (it == f.columns.end()) {
+  const std::vector<std::string> names = f.column_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) {
     throw std::runtime_error("no column " + name);
   }
-  return static_cast<std::size_t>(it - f.columns.begin());
+  return static_cast<std::size_t>(it - names.begin());
+}
+
+/// Whether two cells are the same to the bit (a NaN equals the same NaN).
+inline bool same_cell(const sweeps::Cell& a, const sweeps::Cell& b) {
+  if (a.index() != b.index()) {
+    return false;
+  }
+  if (const auto* x = std::get_if<double>(&a)) {
+    return std::bit_cast<std::uint64_t>(*x) == std::bit_cast<std::uint64_t>(std::get<double>(b));
+  }
+  return a == b;
+}
+
+/// "" if two results of a kind's point have the same rows in every column the kind does not flag
+/// as a timing (so that the CSV under --no-timing is the same byte for byte); else where they
+/// first differ.
+inline std::string first_value_difference(const sweeps::PointKind& f, const sweeps::PointResult& a,
+                                          const sweeps::PointResult& b) {
+  if (a.rows.size() != b.rows.size()) {
+    return "row counts " + std::to_string(a.rows.size()) + " and " + std::to_string(b.rows.size());
+  }
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    for (std::size_t c = 0; c < f.columns.size(); ++c) {
+      if (!f.columns[c].timing && !same_cell(a.rows[i].at(c), b.rows[i].at(c))) {
+        return "row " + std::to_string(i) + ", column " + f.columns[c].name;
+      }
+    }
+  }
+  return "";
 }
 
 }  // namespace slipwalk::test_support

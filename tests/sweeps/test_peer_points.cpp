@@ -1,8 +1,9 @@
-// The speed-comparison point functions of §3.5.3 (sweeps/peer_points.cpp): their keys are checked
-// (bad keys and values name the spec key), and parallel_overhead's rows hold what the figure
-// relies on: one row per trajectory and thread count, the same increments and poses on every
-// thread count, the prefix product equal to the sequential one. (peer_scaling's rows are tested
-// with the peer, tests/peers/test_mujoco_peer.cpp.)
+// The speed-comparison point functions of §3.5.3 (sweeps/points/peer.cpp): their keys are checked
+// (bad keys and values name the spec key); both kinds are timed and flag exactly their measured
+// times (ns) as timing columns; parallel_overhead's rows hold what the figure relies on: one row
+// per trajectory and thread count, the same increments and poses on every thread count, the
+// prefix product equal to the sequential one, and the same values (timings aside) when run again.
+// (peer_scaling's rows are tested with the peer, tests/peers/test_mujoco_peer.cpp.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -49,6 +50,26 @@ TEST(PeerPoints, BadKeysAndValuesNameTheKey) {
   expect_input_error("parallel_overhead", "[params]\ndt = -1\n", "dt");
 }
 
+TEST(PeerPoints, TimedKindsFlagTheirMeasuredTimes) {
+  for (const char* kind : {"peer_scaling", "parallel_overhead"}) {
+    const PointKind& f = fn(kind);
+    EXPECT_EQ(f.timed, Timed::kYes) << kind;
+    ASSERT_FALSE(f.columns.empty());
+    EXPECT_EQ(f.column_names().front(), "id");
+    int timings = 0;
+    for (const ColumnInfo& c : f.columns) {
+      // The measured times are the time_*_ns columns; everything else is a value.
+      const bool measured = c.name.starts_with("time_") && c.name.ends_with("_ns");
+      EXPECT_EQ(c.timing, measured) << kind << ": " << c.name;
+      if (c.timing) {
+        EXPECT_EQ(c.unit, "ns") << kind << ": " << c.name;
+        ++timings;
+      }
+    }
+    EXPECT_GE(timings, 3) << kind;
+  }
+}
+
 TEST(PeerPoints, ParallelOverheadRowsAreConsistent) {
   const PointKind& f = fn("parallel_overhead");
   const auto pts = points("parallel_overhead",
@@ -78,6 +99,9 @@ TEST(PeerPoints, ParallelOverheadRowsAreConsistent) {
         std::hypot(std::get<double>(row[col(f, "end_x")]), std::get<double>(row[col(f, "end_y")])),
         0.05);
   }
+  // Run again: every value column is the same to the bit (the CSV under --no-timing is).
+  const PointResult again = f.run(pts[0]);
+  EXPECT_EQ(test_support::first_value_difference(f, r, again), "");
 }
 
 }  // namespace
