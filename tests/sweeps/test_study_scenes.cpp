@@ -1,4 +1,4 @@
-// [[scene]] entries of a study (issue 6): a scene file run into <data>/<study>/<name>.csv with
+// [[scene]] entries of a study: a scene file run into <data>/<study>/<name>.csv with
 // the `slipwalk run` columns, its overrides (law, filter, duration, dt, quick_duration) equal to
 // writing them in the scene file, and every bad entry named file:line:col.
 #include <gtest/gtest.h>
