@@ -1,23 +1,21 @@
-// slipwalk inchworm vss | trace (DESIGN.md: Command line).
+// slipwalk inchworm vss | trace (DESIGN.md: Command line): the options parsed and checked here,
+// the solve and its output in inchworm/vss.hpp and vss_output.hpp, the trace in trace_file.hpp.
 #include <gsl/gsl_errno.h>
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 
-#include "sweeps/cli/commands.hpp"
-#include "core/atomic_file.hpp"
-#include "core/csv.hpp"
 #include "core/error.hpp"
 #include "inchworm/params.hpp"
 #include "inchworm/trace.hpp"
+#include "inchworm/trace_file.hpp"
 #include "inchworm/vss.hpp"
+#include "inchworm/vss_output.hpp"
+#include "sweeps/cli/commands.hpp"
 
 namespace slipwalk::cli {
 
@@ -129,15 +127,6 @@ struct ParamOptions {
   }
 };
 
-const char* model_name(const inchworm::Params& p) {
-  return p.model == inchworm::SwapModel::kMass ? "dm" : "instant";
-}
-
-/// alpha in the JSON output: the dm model's factor; null for the instant model (it has none).
-nlohmann::json alpha_value(const inchworm::Params& p) {
-  return p.model == inchworm::SwapModel::kMass ? nlohmann::json(p.alpha) : nlohmann::json(nullptr);
-}
-
 inchworm::Method parse_method(const std::string& name) {
   const auto m = inchworm::parse_method(name);
   if (!m) {
@@ -192,73 +181,10 @@ struct VssCommand {
 
     gsl_set_error_handler_off();
     const inchworm::VssResult r = inchworm::solve_vss(p, m, opt);
-    const bool simulated = inchworm::is_simulation(m);
-    // A solve that never produced a number shows none (n/a, JSON null) rather than zeros.
-    const bool nothing = !r.converged && (!simulated || r.strokes == 0);
     if (json) {
-      nlohmann::json out = {
-          {"v_ss", r.v_ss},
-          {"period", r.period},
-          {"c0", r.c0},
-          {"regime", inchworm::regime_name(r.regime)},
-          {"method", inchworm::method_name(m)},
-          {"F", p.F},
-          {"mu", p.mu},
-          {"mu_s", p.static_mu()},
-          {"model", model_name(p)},
-          {"alpha", alpha_value(p)},
-          {"swap_stopped", r.swap_stopped},
-          {"rtol", opt.rtol},
-          {"est_error", r.est_error},
-          {"last_difference", r.last_difference},
-          {"contraction", r.contraction},
-          {"converged", r.converged},
-          {"strokes", r.strokes},
-          {"steps", r.stats.steps},
-          {"rhs_evals", r.stats.rhs_evals},
-          {"wall_s", r.wall_s},
-          {"message", r.message},
-      };
-      for (auto& [key, value] : out.items()) {
-        const bool result = key == "v_ss" || key == "period" || key == "c0" ||
-                            key == "contraction" || key == "est_error" ||
-                            key == "last_difference" || key == "regime" || key == "swap_stopped";
-        if ((nothing && result) ||
-            (value.is_number_float() && !std::isfinite(value.get<double>()))) {
-          value = nullptr;  // JSON has no NaN
-        }
-      }
-      std::cout << out.dump(2) << "\n";
+      std::cout << inchworm::vss_to_json(p, m, opt, r).dump(2) << "\n";
     } else {
-      const auto line = [](const char* key, const std::string& value, const char* unit = "") {
-        std::printf("%-12s %s%s\n", key, value.c_str(), unit);
-      };
-      const auto num = [&](double v) {
-        return nothing ? std::string("n/a") : core::format_double(v);
-      };
-      line("method", inchworm::method_name(m));
-      line("model", model_name(p));
-      if (p.model == inchworm::SwapModel::kMass) {
-        line("alpha", core::format_double(p.alpha));
-      }
-      line("v_ss", num(r.v_ss), " m/s");
-      line("period", num(r.period), " s");
-      line("c0", num(r.c0), " m/s");
-      line("regime", nothing ? "n/a" : inchworm::regime_name(r.regime));
-      if (p.model == inchworm::SwapModel::kMass) {
-        line("swap_stopped", nothing ? "n/a" : (r.swap_stopped ? "yes" : "no"));
-      }
-      line("contraction", num(r.contraction), " per cycle");
-      if (simulated) {
-        line("est_error", num(r.est_error), " (relative)");
-        line("strokes", std::to_string(r.strokes));
-        line("converged", r.converged ? "yes" : "no");
-      }
-      line("wall_s", core::format_double(r.wall_s), " s");
-      if (!r.converged) {
-        line("message", r.message);
-      }
-      std::fflush(stdout);
+      std::cout << inchworm::vss_to_text(p, m, r) << std::flush;
     }
     if (!r.converged) {
       throw core::ComputationError(std::string("inchworm vss --method ") +
@@ -298,18 +224,14 @@ struct TraceCommand {
       std::cout.flush();
       return;
     }
-    const std::filesystem::path path(out);
-    if (std::filesystem::is_directory(path)) {
+    if (std::filesystem::is_directory(out)) {
       throw InputError("--out", "'" + out + "' is a directory");
     }
-    std::unique_ptr<core::AtomicFile> file;
     try {
-      file = std::make_unique<core::AtomicFile>(path);
-    } catch (const InputError&) {
+      inchworm::write_trace_file(p, m, opt, out);
+    } catch (const InputError&) {  // write_trace throws no InputError: the file could not open
       throw InputError("--out", "cannot write '" + out + "'");
     }
-    inchworm::write_trace(p, m, opt, file->stream());
-    file->commit();
   }
 };
 

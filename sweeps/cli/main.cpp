@@ -4,8 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "sweeps/cli/commands.hpp"
 #include "core/error.hpp"
+#include "sweeps/cli/commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"slipwalk: multi-legged locomotion with slipping — reproduce, check, extend"};

@@ -1,20 +1,17 @@
 // slipwalk model: one frame of the multi-legged model (thesis ch. 3) in the frame format of
-// DESIGN.md, or a CSV batch of frames (one per row) for trajectories.
-#include <cmath>
+// DESIGN.md, or a CSV batch of frames (one per row) for trajectories; the work is
+// connection/frame_model.hpp's, this file parses the options and writes the text.
 #include <fstream>
 #include <iostream>
 #include <iterator>
 #include <memory>
-#include <sstream>
 #include <string>
-#include <vector>
 
-#include "sweeps/cli/commands.hpp"
-#include "connection/local_connection.hpp"
+#include "connection/frame_model.hpp"
 #include "contact/frame_json.hpp"
 #include "core/atomic_file.hpp"
-#include "core/csv.hpp"
 #include "core/error.hpp"
+#include "sweeps/cli/commands.hpp"
 
 namespace slipwalk::cli {
 
@@ -52,61 +49,6 @@ void emit(const std::string& out, const std::string& text) {
   core::write_file_atomically(out, text);
 }
 
-/// The per-leg CSV columns of a batch: q{j}x, q{j}y, q{j}z, qd{j}x, qd{j}y, qd{j}z.
-std::vector<std::string> batch_input_columns(int n) {
-  std::vector<std::string> cols{"theta"};
-  for (int j = 0; j < n; ++j) {
-    for (const char* c : {"x", "y", "z"}) {
-      cols.push_back("q" + std::to_string(j) + c);
-    }
-    for (const char* c : {"x", "y", "z"}) {
-      cols.push_back("qd" + std::to_string(j) + c);
-    }
-  }
-  return cols;
-}
-
-std::vector<std::string> batch_output_columns(int n) {
-  std::vector<std::string> cols{
-      "frame", "alpha", "beta", "z", "vx", "vy", "wz", "support", "friction_converged"};
-  for (int j = 0; j < n; ++j) {
-    for (const char* c : {"contact", "Fz", "Fx", "Fy"}) {
-      cols.push_back(std::string(c) + std::to_string(j));
-    }
-  }
-  return cols;
-}
-
-/// Splits one CSV line (no quoting: numbers only) and records where each cell starts.
-void split(const std::string& line, std::vector<std::string>& cells, std::vector<int>& starts) {
-  cells.clear();
-  starts.clear();
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t end = line.find(',', begin);
-    cells.push_back(line.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
-    starts.push_back(static_cast<int>(begin) + 1);
-    if (end == std::string::npos) {
-      break;
-    }
-    begin = end + 1;
-  }
-}
-
-double cell_number(const std::string& cell, const std::string& where) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(cell, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != cell.size() || !std::isfinite(v)) {
-    throw InputError(where, "expected a finite number, got '" + cell + "'");
-  }
-  return v;
-}
-
 struct ModelCommand {
   std::string friction = "viscous";
   std::string in = "-";
@@ -115,74 +57,14 @@ struct ModelCommand {
 
   void run() const {
     const connection::FrictionLaw law = friction_law(friction);
-    if (!robot.empty()) {
-      run_batch(law);
+    const std::string source = in == "-" ? "<stdin>" : in;
+    if (robot.empty()) {
+      emit(out, connection::evaluate_frame_json(read_all(in), source, law));
       return;
     }
-    const std::string text = read_all(in);
-    contact::FrameInput input = contact::parse_frame_json(text, in == "-" ? "<stdin>" : in);
-    connection::evaluate(input.robot, input.frame, law);
-    const auto json = contact::frame_to_json(input.robot, input.frame,
-                                             law == connection::FrictionLaw::kViscousCoulomb);
-    emit(out, json.dump(1) + "\n");
-  }
-
-  void run_batch(connection::FrictionLaw law) const {
+    // A robot file switches to the CSV batch form; the robot is read first.
     const contact::Robot r = contact::parse_robot_json(read_all(robot), robot);
-    const int n = r.legs();
-    const std::string source = in == "-" ? "<stdin>" : in;
-    std::istringstream lines(read_all(in));
-    std::string line;
-    std::vector<std::string> cells;
-    std::vector<int> starts;
-    if (!std::getline(lines, line)) {
-      throw InputError(source, "empty; expected a header line");
-    }
-    const std::vector<std::string> expected = batch_input_columns(n);
-    split(line, cells, starts);
-    if (cells != expected) {
-      throw InputError(source + ":1:1",
-                       "header must be " + std::to_string(expected.size()) +
-                           " columns theta,q0x,q0y,q0z,qd0x,qd0y,qd0z,q1x,... for " +
-                           std::to_string(n) + " legs");
-    }
-    std::ostringstream text;
-    core::CsvWriter csv(text, batch_output_columns(n));
-    contact::Frame f(r);
-    int row = 1;
-    while (std::getline(lines, line)) {
-      ++row;
-      if (line.empty()) {
-        continue;
-      }
-      split(line, cells, starts);
-      const std::string at_row = source + ":" + std::to_string(row);
-      if (cells.size() != expected.size()) {
-        throw InputError(at_row, "has " + std::to_string(cells.size()) + " cells, expected " +
-                                     std::to_string(expected.size()));
-      }
-      auto value = [&](std::size_t c) {
-        return cell_number(cells[c], at_row + ":" + std::to_string(starts[c]));
-      };
-      f.theta = value(0);
-      for (int j = 0; j < n; ++j) {
-        const std::size_t base = 1 + 6 * static_cast<std::size_t>(j);
-        for (int i = 0; i < 3; ++i) {
-          f.q(i, j) = value(base + static_cast<std::size_t>(i));
-          f.qdot(i, j) = value(base + 3 + static_cast<std::size_t>(i));
-        }
-      }
-      connection::evaluate(r, f, law);
-      csv.cell(static_cast<long long>(row - 1)).cell(f.alpha).cell(f.beta).cell(f.z);
-      csv.cell(f.v_body(0)).cell(f.v_body(1)).cell(f.v_body(2));
-      csv.cell(static_cast<int>(f.support.status)).cell(f.friction.converged ? 1 : 0);
-      for (int j = 0; j < n; ++j) {
-        csv.cell(f.contact[static_cast<std::size_t>(j)] != 0 ? 1 : 0).cell(f.Fz(j));
-        csv.cell(f.Fxy(0, j)).cell(f.Fxy(1, j));
-      }
-      csv.end_row();
-    }
-    emit(out, text.str());
+    emit(out, connection::evaluate_frame_batch(r, read_all(in), source, law));
   }
 };
 

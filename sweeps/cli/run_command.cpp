@@ -1,7 +1,7 @@
-// slipwalk run SCENE.toml --out FILE.csv [--progress]: a trajectory of a scene (thesis §3.5;
-// issues 6 and 8). The scene is read and checked whole first (bad input: exit 2, nothing written),
-// the simulator composed once (scene/scene.hpp), then one CSV row per frame is written to a
-// temporary file renamed when complete, with a provenance sidecar FILE.json beside it.
+// slipwalk run SCENE.toml --out FILE.csv [--progress]: a trajectory of a scene (thesis §3.5,
+// effects §5.2-5.3). The scene is read and checked whole first (bad input: exit 2, nothing
+// written), the simulator composed once (scene/scene.hpp), then one CSV row per frame is written to
+// a temporary file renamed when complete, with a provenance sidecar FILE.json beside it.
 //
 // The columns and the sidecar are scene/run_writer.hpp's, shared with the [[scene]] entries of
 // the studies (`slipwalk reproduce`).
@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "sweeps/cli/commands.hpp"
 #include "scene/run_writer.hpp"
 #include "scene/scene.hpp"
+#include "sweeps/cli/commands.hpp"
 
 namespace slipwalk::cli {
 

@@ -3,8 +3,8 @@
 #include <memory>
 #include <string>
 
-#include "sweeps/cli/commands.hpp"
 #include "core/error.hpp"
+#include "sweeps/cli/commands.hpp"
 #include "sweeps/engine/runner.hpp"
 #include "sweeps/engine/spec.hpp"
 #include "sweeps/points/families.hpp"
@@ -32,7 +32,8 @@ struct SweepCommand {
       throw core::InputError("--max-points", "must be non-negative");
     }
     // Everything is checked before anything is written.
-    const sweeps::PreparedSweep sweep = sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
+    const sweeps::PreparedSweep sweep =
+        sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
     sweeps::RunOptions options;
     options.data_dir = data;
     options.jobs = static_cast<unsigned>(jobs);

@@ -4,19 +4,13 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <fstream>
-#include <iostream>
 #include <map>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
-#include "core/provenance.hpp"
-#include "scene/run_writer.hpp"
-#include "sweeps/engine/runner.hpp"
 #include "sweeps/engine/toml_util.hpp"
 
 namespace slipwalk::sweeps {
@@ -337,78 +331,13 @@ std::vector<std::filesystem::path> find_studies(const std::filesystem::path& stu
   return out;
 }
 
-std::filesystem::path write_trace_job(const Study& study, const TraceJob& job,
-                                      const std::filesystem::path& data_dir) {
-  const auto start = std::chrono::steady_clock::now();
-  std::filesystem::path csv = data_dir / study.id / (job.name + ".csv");
-  {
-    core::AtomicFile file(csv);
-    inchworm::write_trace(job.params, job.method, job.options, file.stream());
-    file.commit();
-  }
-  const double wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const inchworm::Params& p = job.params;
-  const nlohmann::json sidecar = {
-      {"study", study.id},
-      {"name", job.name},
-      {"kind", "inchworm_trace"},
-      {"spec_file", (study.dir / "study.toml").string()},
-      {"spec", job.source},
-      {"params",
-       {{"m", p.m},
-        {"M", p.M},
-        {"L_min", p.L_min},
-        {"L_max", p.L_max},
-        {"g", p.g},
-        {"mu", p.mu},
-        {"mu_s", p.static_mu()},
-        {"F", p.F},
-        {"model", p.model == inchworm::SwapModel::kMass ? "dm" : "instant"},
-        {"alpha", p.model == inchworm::SwapModel::kMass ? nlohmann::json(p.alpha)
-                                                        : nlohmann::json(nullptr)}}},
-      {"method", inchworm::method_name(job.method)},
-      {"cycles", job.options.cycles},
-      {"dt", job.options.sample_dt},
-      {"rtol", job.options.rtol},
-      {"csv", csv.filename().string()},
-      {"threads", 1},
-      {"wall_s", wall_s},
-      {"date", utc_now()},
-      {"provenance", core::build_provenance()},
-  };
-  std::filesystem::path json = csv;
-  json.replace_extension(".json");
-  core::write_file_atomically(json, sidecar.dump(1) + "\n");
-  return csv;
-}
-
-}  // namespace slipwalk::sweeps
-
-namespace slipwalk::sweeps {
-
-std::filesystem::path write_scene_job(const Study& study, const SceneJob& job,
-                                      const std::filesystem::path& data_dir, bool quick) {
+scene::Scene scene_of(const SceneJob& job, bool quick) {
   scene::Scene sc = job.scene;
   if (quick && job.quick_duration) {
     sc.duration = *job.quick_duration;
     sc.steps = whole_steps(sc.duration, sc.dt, job.origin, "quick_duration");
   }
-  const scene::Simulator sim = scene::compose(sc);
-  const std::filesystem::path csv = data_dir / study.id / (job.name + ".csv");
-  const nlohmann::json extra = {
-      {"study", study.id},   {"name", job.name},
-      {"kind", "scene_run"}, {"spec_file", (study.dir / "study.toml").string()},
-      {"spec", job.source},  {"quick", quick},
-      {"date", utc_now()},
-  };
-  const scene::RunResult result = scene::write_run(sc, sim, csv, extra, nullptr);
-  if (!result.summary.message.empty()) {
-    std::cerr << "slipwalk: warning: " << study.id << "/" << job.name << ": "
-              << result.summary.unsupported << " unsupported and " << result.summary.not_converged
-              << " unconverged frames; first at " << result.summary.message << "\n";
-  }
-  return csv;
+  return sc;
 }
 
 }  // namespace slipwalk::sweeps

@@ -1,7 +1,7 @@
 #pragma once
 // A study (studies/<id>/study.toml, sweeps/README.md): a title, time-series traces of the
 // inchworm, scene runs (trajectories of walking robots) and sweep specs in the same folder.
-// `slipwalk reproduce` runs them all.
+// Their runs are the jobs of job.hpp; the pipeline of reproduce.hpp runs them all.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -52,14 +52,8 @@ struct Study {
 [[nodiscard]] std::vector<std::filesystem::path> find_studies(
     const std::filesystem::path& studies_dir);
 
-/// Writes <data>/<study>/<name>.csv (inchworm::write_trace) and its sidecar <name>.json,
-/// atomically. Returns the CSV's path.
-std::filesystem::path write_trace_job(const Study& study, const TraceJob& job,
-                                      const std::filesystem::path& data_dir);
-
-/// Runs a [[scene]] entry (quick: its quick_duration, when given) into <data>/<study>/<name>.csv
-/// with the `slipwalk run` columns and sidecar (scene/run_writer.hpp). Returns the CSV's path.
-std::filesystem::path write_scene_job(const Study& study, const SceneJob& job,
-                                      const std::filesystem::path& data_dir, bool quick);
+/// The scene a [[scene]] entry runs: its scene, under `quick` with its quick_duration (when
+/// given).
+[[nodiscard]] scene::Scene scene_of(const SceneJob& job, bool quick);
 
 }  // namespace slipwalk::sweeps

@@ -11,10 +11,11 @@
 #include "core/error.hpp"
 #include "events/exact_backend.hpp"
 #include "inchworm/simulate.hpp"
+#include "sweeps/engine/job.hpp"
 #include "sweeps/engine/runner.hpp"
-#include "sweeps/points/families.hpp"
 #include "sweeps/engine/spec.hpp"
 #include "sweeps/engine/study.hpp"
+#include "sweeps/points/families.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -420,7 +421,7 @@ dt = 0.01
   EXPECT_EQ(study.traces[0].params.model, inchworm::SwapModel::kInstant);
   EXPECT_EQ(study.traces[1].params.model, inchworm::SwapModel::kMass);
   EXPECT_EQ(study.traces[1].params.alpha, 5.0);
-  const auto csv = write_trace_job(study, study.traces[1], d / "data");
+  const auto csv = write_trace_job(study, study.traces[1], d / "data").csv;
   EXPECT_NE(read_text(csv).find("arrival_after"), std::string::npos);
   const auto side = nlohmann::json::parse(read_text(d / "data" / study.id / "dm5.json"));
   EXPECT_EQ(side.at("params").at("model"), "dm");

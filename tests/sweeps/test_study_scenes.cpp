@@ -1,4 +1,4 @@
-// [[scene]] entries of a study (issue 6): a scene file run into <data>/<study>/<name>.csv with
+// [[scene]] entries of a study: a scene file run into <data>/<study>/<name>.csv with
 // the `slipwalk run` columns, its overrides (law, filter, duration, dt, quick_duration) equal to
 // writing them in the scene file, and every bad entry named file:line:col.
 #include <gtest/gtest.h>
@@ -12,6 +12,7 @@
 
 #include "cli/command.hpp"
 #include "core/error.hpp"
+#include "sweeps/engine/job.hpp"
 #include "sweeps/engine/study.hpp"
 
 namespace slipwalk::sweeps {
@@ -83,7 +84,7 @@ quick_duration = 0.05
   const auto data = d / "data";
   std::vector<std::string> csv;
   for (const auto& job : study.scenes) {
-    csv.push_back(read_text(write_scene_job(study, job, data, false)));
+    csv.push_back(read_text(write_scene_job(study, job, data, false).csv));
   }
   // An override is the scene file written with it: byte-identical trajectories.
   EXPECT_EQ(csv[1], csv[2]);
@@ -96,8 +97,10 @@ quick_duration = 0.05
   EXPECT_EQ(lines_of(csv[4])[0].find("vx_model") == std::string::npos, false);
   EXPECT_EQ(lines_of(csv[5])[0].find("vx_model"), std::string::npos);
   // Quick mode runs quick_duration (0.05 s at dt 0.005: 11 frames); without one, the duration.
-  EXPECT_EQ(lines_of(read_text(write_scene_job(study, study.scenes[5], data, true))).size(), 12U);
-  EXPECT_EQ(lines_of(read_text(write_scene_job(study, study.scenes[0], data, true))).size(), 32U);
+  EXPECT_EQ(lines_of(read_text(write_scene_job(study, study.scenes[5], data, true).csv)).size(),
+            12U);
+  EXPECT_EQ(lines_of(read_text(write_scene_job(study, study.scenes[0], data, true).csv)).size(),
+            32U);
 
   const auto side = nlohmann::json::parse(read_text(data / study.id / "coulomb_override.json"));
   EXPECT_EQ(side.at("kind"), "scene_run");
@@ -115,7 +118,8 @@ TEST(StudyScenes, SameRowsAsTheRunCommand) {
   write_text(d / "scenes" / "tripod.toml", scene_text("viscous"));
   write_text(d / "study.toml", "[[scene]]\nname = \"r\"\nfile = \"scenes/tripod.toml\"\n");
   const Study study = load_study(d.path());
-  const std::string ours = read_text(write_scene_job(study, study.scenes[0], d / "data", false));
+  const std::string ours =
+      read_text(write_scene_job(study, study.scenes[0], d / "data", false).csv);
   const auto run = run_slipwalk(
       {"run", (d / "scenes" / "tripod.toml").string(), "--out", (d / "run.csv").string()});
   ASSERT_EQ(run.exit_code, 0) << run.err;

@@ -1,0 +1,85 @@
+#pragma once
+// The study pipeline as a library call (`slipwalk reproduce` is a thin adapter of it):
+//
+//   ReproduceOptions options;
+//   options.studies_dir = "studies";
+//   options.kinds = points::all_kinds();           // sweeps/points/families.hpp
+//   const ReproduceSummary summary = reproduce(options);
+//   std::cout << summary.brief_report() << "\n";
+//
+// Stages: check the options; read and check every study file and sweep spec (nothing is written
+// before all of them have passed); run each study's jobs (job.hpp: traces, scene runs, sweeps, in
+// that order); build the report with the Python builder. Bad input throws core::InputError before
+// any file is written; a job that throws stops the pipeline; failed sweep points are counted,
+// not fatal; a failing report builder is recorded in the summary.
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "sweeps/engine/job.hpp"
+#include "sweeps/engine/point_kind.hpp"
+
+namespace slipwalk::sweeps {
+
+struct ReproduceOptions {
+  std::filesystem::path studies_dir = "studies";  ///< folders holding a study.toml
+  /// The studies to run, folder names under studies_dir; empty (default): every study there.
+  std::vector<std::string> names;
+  std::filesystem::path data_dir = "data";  ///< outputs: <data_dir>/<study>/<name>.{csv,json}
+  bool quick = false;  ///< the specs' [quick] overrides and scenes' quick_duration: a smoke run
+  /// true (default): keep what earlier runs finished — a job whose CSV and sidecar this build
+  /// wrote for the same inputs is not rerun, an interrupted sweep continues from its checkpoint.
+  /// false (`--fresh`): every job runs, checkpoints are discarded.
+  bool resume = true;
+  int jobs = 0;        ///< threads per sweep, 1 to 4096; 0 (default): one per core
+  bool report = true;  ///< run the report builder after the studies
+  std::filesystem::path report_dir = "reports/out";   ///< the builder's --out
+  std::filesystem::path python = "/usr/bin/python3";  ///< the interpreter of the builder
+  /// The builder: `<python> <builder> --data DATA --out REPORT [--quick]`; when the file does
+  /// not exist the report is skipped (ReportOutcome::kNoBuilder).
+  std::filesystem::path report_builder = "reports/build_report.py";
+  std::span<const PointKind> kinds;  ///< the point kinds sweeps may name (required)
+  std::ostream* log = nullptr;       ///< a line per study and per job as they finish; null: none
+  std::ostream* progress = nullptr;  ///< sweep progress lines and warnings; null: none
+
+  /// The first problem with these options, or none: a --jobs out of range, no point kinds, a
+  /// studies folder that does not exist, a named study without a study.toml. Its `where` names
+  /// the option (`--jobs`, `--studies`, `STUDY`).
+  [[nodiscard]] std::optional<core::InputError> validate() const;
+};
+
+enum class ReportOutcome {
+  kOff,        ///< options.report was false
+  kNoBuilder,  ///< the builder script does not exist: skipped
+  kBuilt,      ///< the builder exited with status 0
+  kFailed,     ///< it could not start or exited non-zero (report_message says which)
+};
+
+struct ReproduceSummary {
+  struct StudyRun {
+    std::string id;
+    std::string title;
+  };
+  std::vector<StudyRun> studies;  ///< in the order run
+  std::vector<JobSummary> jobs;   ///< every job, in the order run
+  ReportOutcome report = ReportOutcome::kOff;
+  std::string report_message;  ///< why the report was skipped or failed; empty when built or off
+  double report_seconds = 0.0;
+  double seconds = 0.0;  ///< the whole call
+
+  [[nodiscard]] long long failed_points() const;  ///< over every sweep job
+  [[nodiscard]] long long resumed_points() const;
+  [[nodiscard]] long long points() const;
+  /// One line: `reproduce: done in 61.2 s; 0 sweep points failed (recorded in the sidecars)`.
+  [[nodiscard]] std::string brief_report() const;
+};
+
+/// Runs the pipeline (above). Throws options.validate()'s error, core::InputError for a bad
+/// study or spec (before anything is written), and what a job throws.
+ReproduceSummary reproduce(const ReproduceOptions& options);
+
+}  // namespace slipwalk::sweeps
