@@ -1,33 +1,31 @@
 // The planar friction forces at a prescribed body velocity (thesis §3.4).
 //
-// ---- What is computed
-// ---------------------------------------------------------------------------- Foot k of a robot
-// whose body moves at x = (v_x, v_y, ω) (body frame) slides at
-//   u_k = v + ω S q_k + q̇_k                                        (eq. 3.5 rotated by R_θᵀ)
+// ---- What is computed ---------------------------------------------------------------------------
+// Foot k of a robot whose body moves at x = (v_x, v_y, ω) (body frame) slides at
+//   u_k = v + ω S q_k + q̇_k                                       (eq. 3.5 rotated by R_θᵀ)
 // and its planar force is F_k = −c_k φ(s_k) G_k u_k with c_k = μ_k F_z,k, G_k = I + w_k w_kᵀ
 // (eq. 3.19 in body coordinates) and s_k = √(u_kᵀ G_k u_k) = ‖W_k u_k‖, where
 //   φ = 1                  the viscous-Coulomb ansatz (eq. 3.14 with ε → ∞, eq. 3.19),
-//   φ = 1/s                Coulomb friction (eq. 3.13; anisotropic: the force lies on the boundary
-//                          of the friction ellipse {F : Fᵀ G⁻¹ F ≤ c²}, |F|_{G⁻¹} = c),
+//   φ = 1/s                Coulomb friction (eq. 3.13; anisotropic: the force lies on the rim of
+//                          the friction ellipse {F : Fᵀ G⁻¹ F ≤ c²}),
 //   φ = (ε + s)/(ε + s²)   the ε-family of eq. 3.14, between the two.
 // planar_forces returns Σ F_k and Σ (q_k × F_k)_z = Σ (q_x F_y − q_y F_x) over the feet in
 // contact: the left-hand sides of the force and moment balance (eqs. 3.16–3.18), which the
 // solvers of friction/solvers.hpp drive to zero. These are the solvers' laws and metric exactly
 // (friction/balance.hpp), written out per foot without the solvers' scaled coordinates.
 //
-// ---- Where the Coulomb law is set-valued
-// --------------------------------------------------------- At u_k = 0 a Coulomb foot sticks and
-// carries any force in its ellipse; foot_force returns the ellipse's centre, 0. A sum over feet one
-// of which sticks is therefore not the balance's sum, and Fig. 3.2's force map shows exactly this
-// point discontinuity at each foot's rest velocity.
+// ---- Where the Coulomb law is set-valued --------------------------------------------------------
+// At u_k = 0 a Coulomb foot sticks and carries any force in its ellipse; foot_force returns the
+// ellipse's centre, 0. A sum over feet one of which sticks is therefore not the balance's sum,
+// and Fig. 3.2's force map shows this point discontinuity at each foot's rest velocity.
 //
-// ---- Oracles (tests/friction/test_planar_forces.cpp)
-// --------------------------------------------- At the body velocity each balance solver returns
-// (viscous-Coulomb, Coulomb with every foot sliding, ε) both sums vanish to the solver's accuracy
-// and each foot's force equals the solver's frame.Fxy; one foot by hand (Coulomb: magnitude μ F_z
-// opposite the slip; viscous: linear in the slip); invariance under a rotation of the body frame
-// and a change of the reference point (the moment shifts by d × ΣF); the ε-law tends to Coulomb as
-// ε → 0 and to viscous-Coulomb as ε → ∞ for a sliding foot.
+// ---- Oracles (tests/friction/test_planar_forces.cpp) --------------------------------------------
+// At the body velocity each balance solver returns (viscous-Coulomb; Coulomb, with the solver's
+// forces on the sticking feet; ε) both sums vanish to the solver's accuracy and each sliding
+// foot's force is the solver's frame.Fxy; one foot by hand (Coulomb: magnitude μ F_z opposite the
+// slip, the maximum-dissipation point of its ellipse; viscous: linear in the slip); invariance
+// under a rotation of the body frame and a change of reference point (the moment shifts by
+// d × ΣF); the ε-law tends to Coulomb as ε → 0 and is viscous-Coulomb at ε = ∞.
 #include "friction/planar_forces.hpp"
 
 #include <cmath>

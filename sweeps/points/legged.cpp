@@ -30,7 +30,6 @@
 #include "contact/frame_json.hpp"
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
-#include "core/csv.hpp"
 #include "core/error.hpp"
 #include "friction/planar_forces.hpp"
 #include "friction/solvers.hpp"
