@@ -1,5 +1,5 @@
-// Point functions of the multi-legged model (thesis ch. 3); see point_functions.hpp. Each one's
-// keys are checked in its read_* function and its rows are described above its run_* function.
+// The point kinds of the multi-legged model (thesis ch. 3). Each kind's keys are checked in its
+// read_* function, and its rows are a struct with their column table above its run_* function.
 //
 //   legged_1d            §3.1.2, Fig. 3.1: N feet on a line with equal loads and random speeds;
 //                        Coulomb friction gives −median, the viscous-Coulomb ansatz −mean
@@ -12,8 +12,8 @@
 //                        Coulomb force near the sliding velocity v = (|v|, 0)
 //
 // Robots are read from frame files (the DESIGN.md frame format, contact/frame_json.hpp) named
-// relative to the spec file. Forces at a prescribed velocity (force map, eps error) are evaluated
-// here from eqs. 3.13, 3.14 and 3.19 in body coordinates; balances come from the library solvers.
+// relative to the spec file. Balances come from the library's solvers (friction/solvers.hpp),
+// forces at a prescribed body velocity from friction::planar_forces (friction/planar_forces.hpp).
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -30,20 +30,20 @@
 #include "contact/frame_json.hpp"
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
-#include "core/csv.hpp"
 #include "core/error.hpp"
+#include "friction/planar_forces.hpp"
 #include "friction/solvers.hpp"
 #include "sweeps/engine/point_kind.hpp"
-#include "sweeps/points/families.hpp"
-#include "sweeps/points/legacy.hpp"
 #include "sweeps/engine/point_reader.hpp"
 #include "sweeps/engine/random.hpp"
+#include "sweeps/points/families.hpp"
 
-namespace slipwalk::sweeps {
+namespace slipwalk::sweeps::points {
 
 namespace {
 
 using core::InputError;
+using friction::ForceLaw;
 const double kNaN = std::nan("");
 
 // --- reading a point ----------------------------------------------------------------------------
@@ -71,46 +71,16 @@ contact::FrameInput read_robot(const Reader& r, std::string_view key, std::strin
   }
 }
 
-// --- planar forces at a prescribed body velocity (eqs. 3.13, 3.14, 3.19) ------------------------
-
-enum class Law { kViscous, kCoulomb };
-
-struct PlanarSum {
-  Eigen::Vector2d F = Eigen::Vector2d::Zero();
-  double Mz = 0.0;
-};
-
-/// Σ F_k and Σ (q_k × F_k)_z over the feet in contact when the body moves at (v, ω) in the body
-/// frame: u_k = v + ω S q_k + q̇_k, G_k = I + w_k w_kᵀ, F_k = −μ_k F_z,k G_k u_k (viscous-Coulomb)
-/// or −μ_k F_z,k G_k u_k / √(u_kᵀ G_k u_k) (Coulomb; 0 for a foot with u_k = 0, the centre of its
-/// friction set, where the Coulomb force is set-valued).
-PlanarSum planar_forces(const contact::Robot& robot, const contact::Frame& f,
-                        const Eigen::Vector2d& v, double omega, Law law) {
-  PlanarSum sum;
-  for (int k = 0; k < f.legs(); ++k) {
-    if (f.contact[static_cast<std::size_t>(k)] == 0) {
-      continue;
-    }
-    const Eigen::Vector2d q = f.q.col(k).head<2>();
-    const Eigen::Vector2d u = v + omega * Eigen::Vector2d(-q(1), q(0)) + f.qdot.col(k).head<2>();
-    const Eigen::Vector2d w = robot.w.col(k);
-    const Eigen::Vector2d Gu = u + w * w.dot(u);
-    double scale = robot.mu(k) * f.Fz(k);
-    if (law == Law::kCoulomb) {
-      const double s = std::sqrt(u.dot(Gu));
-      scale = s > 0.0 ? scale / s : 0.0;
-    }
-    const Eigen::Vector2d F = -scale * Gu;
-    sum.F += F;
-    sum.Mz += q(0) * F(1) - q(1) * F(0);
+/// "spring support: <status>[: <message>]" when the search found no balance, else empty.
+std::string support_failure(const contact::Frame& f) {
+  using Status = contact::SupportSummary::Status;
+  if (f.support.status != Status::kUnsupported && f.support.status != Status::kIterationLimit) {
+    return {};
   }
-  return sum;
+  return std::string("spring support: ") + contact::status_name(f.support.status) +
+         (f.support.message.empty() ? "" : ": " + f.support.message);
 }
-
-const char* law_name(Law law) { return law == Law::kViscous ? "viscous" : "coulomb"; }
-
-// --- legged_1d
-// ------------------------------------------------------------------------------------
+// --- legged_1d ---------------------------------------------------------------------------------
 
 const std::vector<std::string_view> k1dKeys = {"N",     "seed",   "trials", "distribution",
                                                "scale", "offset", "speeds"};
@@ -205,13 +175,73 @@ std::vector<double> draw_speeds(const OneDInputs& in, long long trial) {
   return v;
 }
 
+/// One row per trial: both laws' body velocities against the median and mean of the speeds.
+struct OneDRow {
+  long long id = 0;
+  long long N = 0;
+  long long seed = 0;
+  long long trial = 0;
+  std::string distribution;  ///< uniform | normal | exponential, or "given" (explicit speeds)
+  double scale = kNaN;       ///< NaN with explicit speeds
+  double offset = kNaN;      ///< NaN with explicit speeds
+  double v_coulomb = 0.0;
+  double v_viscous = 0.0;
+  double neg_median = 0.0;
+  double neg_mean = 0.0;
+  double interval_lo = 0.0;  ///< the Coulomb balances: [interval_lo, interval_hi]
+  double interval_hi = 0.0;
+  bool in_interval = false;  ///< v_coulomb within it (to 1e-7 of the speeds' range)
+  bool unique = false;
+  long long static_feet = 0;
+  double vy_coulomb = 0.0;
+  double w_coulomb = 0.0;
+  double vy_viscous = 0.0;
+  double w_viscous = 0.0;
+  double speed_sd = 0.0;
+  double speed_range = 0.0;
+  bool converged = false;
+  long long iterations = 0;
+  double certificate = 0.0;
+  std::string message;
+
+  static std::vector<Column<OneDRow>> columns() {
+    using R = OneDRow;
+    return {value("id", &R::id),
+            value("N", &R::N),
+            value("seed", &R::seed),
+            value("trial", &R::trial),
+            value("distribution", &R::distribution),
+            value("scale", &R::scale, "m/s"),
+            value("offset", &R::offset, "m/s"),
+            value("v_coulomb", &R::v_coulomb, "m/s"),
+            value("v_viscous", &R::v_viscous, "m/s"),
+            value("neg_median", &R::neg_median, "m/s"),
+            value("neg_mean", &R::neg_mean, "m/s"),
+            value("interval_lo", &R::interval_lo, "m/s"),
+            value("interval_hi", &R::interval_hi, "m/s"),
+            value("in_interval", &R::in_interval),
+            value("unique", &R::unique),
+            value("static_feet", &R::static_feet),
+            value("vy_coulomb", &R::vy_coulomb, "m/s"),
+            value("w_coulomb", &R::w_coulomb, "rad/s"),
+            value("vy_viscous", &R::vy_viscous, "m/s"),
+            value("w_viscous", &R::w_viscous, "rad/s"),
+            value("speed_sd", &R::speed_sd, "m/s"),
+            value("speed_range", &R::speed_range, "m/s"),
+            value("converged", &R::converged),
+            value("iterations", &R::iterations),
+            value("certificate", &R::certificate),
+            value("message", &R::message)};
+  }
+};
+
 // Fig. 3.1 in the body frame of the library: the N feet lie on the body's x axis at
 // x_i = −1 … 1 (evenly spaced; one foot at 0), each with the same normal load Mg/N (set directly:
 // the 1-D example assumes equal loads), μ = 1, foot i sliding relative to the body at (v_i, 0).
 // The problem is mirror-symmetric about the x axis and the dissipation is strictly convex in
 // (v_y, ω) (at least two feet at distinct x slide), so both laws give v_y = ω = 0 and the 2-D
 // solvers answer the 1-D question.
-PointResult run_1d(const Point& point) {
+Rows<OneDRow> run_1d(const Point& point) {
   const OneDInputs in = read_1d(point);
   const int n = static_cast<int>(in.N);
   const contact::Robot robot = contact::uniform_robot(n, 1.0, 1.0, 1.0);
@@ -221,7 +251,7 @@ PointResult run_1d(const Point& point) {
     frame.contact[static_cast<std::size_t>(i)] = 1;
     frame.Fz(i) = robot.Mg / n;
   }
-  PointResult out;
+  Rows<OneDRow> out;
   for (long long trial = 0; trial < in.trials; ++trial) {
     std::vector<double> v = draw_speeds(in, trial);
     for (int i = 0; i < n; ++i) {
@@ -253,38 +283,41 @@ PointResult run_1d(const Point& point) {
     const Eigen::Vector3d coul = frame.v_body;
     const contact::FrictionSummary& cs = frame.friction;
     const double tol = 1e-7 * std::max(s.back() - s.front(), std::abs(median) + 1e-300);
-    const bool in_interval = coul(0) >= lo - tol && coul(0) <= hi + tol;
 
-    std::string message = cs.message;
-    if (!visc_summary.message.empty()) {
-      message += (message.empty() ? "" : "; ") + std::string("viscous: ") + visc_summary.message;
+    OneDRow row;
+    row.id = point.id;
+    row.N = n;
+    row.seed = in.seed;
+    row.trial = trial;
+    row.distribution = in.speeds.empty() ? in.distribution : std::string("given");
+    if (in.speeds.empty()) {
+      row.scale = in.scale;
+      row.offset = in.offset;
     }
-    out.rows.push_back(Row{point.id,
-                           static_cast<long long>(n),
-                           in.seed,
-                           trial,
-                           in.speeds.empty() ? in.distribution : std::string("given"),
-                           in.speeds.empty() ? in.scale : kNaN,
-                           in.speeds.empty() ? in.offset : kNaN,
-                           coul(0),
-                           visc(0),
-                           -median,
-                           -mean,
-                           lo,
-                           hi,
-                           static_cast<long long>(in_interval ? 1 : 0),
-                           static_cast<long long>(cs.unique ? 1 : 0),
-                           static_cast<long long>(cs.static_feet),
-                           coul(1),
-                           coul(2),
-                           visc(1),
-                           visc(2),
-                           sd,
-                           s.back() - s.front(),
-                           static_cast<long long>(cs.converged ? 1 : 0),
-                           static_cast<long long>(cs.iterations),
-                           cs.certificate,
-                           message});
+    row.v_coulomb = coul(0);
+    row.v_viscous = visc(0);
+    row.neg_median = -median;
+    row.neg_mean = -mean;
+    row.interval_lo = lo;
+    row.interval_hi = hi;
+    row.in_interval = coul(0) >= lo - tol && coul(0) <= hi + tol;
+    row.unique = cs.unique;
+    row.static_feet = cs.static_feet;
+    row.vy_coulomb = coul(1);
+    row.w_coulomb = coul(2);
+    row.vy_viscous = visc(1);
+    row.w_viscous = visc(2);
+    row.speed_sd = sd;
+    row.speed_range = s.back() - s.front();
+    row.converged = cs.converged;
+    row.iterations = cs.iterations;
+    row.certificate = cs.certificate;
+    row.message = cs.message;
+    if (!visc_summary.message.empty()) {
+      row.message +=
+          (row.message.empty() ? "" : "; ") + std::string("viscous: ") + visc_summary.message;
+    }
+    out.rows.push_back(std::move(row));
     if (!cs.converged && !out.failed) {
       out.failed = true;
       out.message =
@@ -293,13 +326,6 @@ PointResult run_1d(const Point& point) {
   }
   return out;
 }
-
-const std::vector<std::string> k1dColumns = {
-    "id",          "N",           "seed",      "trial",       "distribution", "scale",
-    "offset",      "v_coulomb",   "v_viscous", "neg_median",  "neg_mean",     "interval_lo",
-    "interval_hi", "in_interval", "unique",    "static_feet", "vy_coulomb",   "w_coulomb",
-    "vy_viscous",  "w_viscous",   "speed_sd",  "speed_range", "converged",    "iterations",
-    "certificate", "message"};
 
 // --- legged_compare ------------------------------------------------------------------------------
 
@@ -327,10 +353,49 @@ CompareInputs read_compare(const Point& point) {
   return in;
 }
 
-const std::vector<std::string> kCompareColumns = {
-    "id",         "N",          "seed",        "trial",      "spread",    "vx_viscous",
-    "vy_viscous", "w_viscous",  "vx_coulomb",  "vy_coulomb", "w_coulomb", "diff",
-    "rel_diff",   "mean_speed", "static_feet", "unique",     "converged", "message"};
+/// One row per trial: both laws' balances and how far apart they are.
+struct CompareRow {
+  long long id = 0;
+  long long N = 0;
+  long long seed = 0;
+  long long trial = 0;
+  double spread = 0.0;
+  double vx_viscous = 0.0;
+  double vy_viscous = 0.0;
+  double w_viscous = 0.0;
+  double vx_coulomb = 0.0;
+  double vy_coulomb = 0.0;
+  double w_coulomb = 0.0;
+  double diff = 0.0;        ///< ‖(Δv_x, Δv_y, radius·Δω)‖
+  double rel_diff = 0.0;    ///< diff / mean_speed
+  double mean_speed = 0.0;  ///< the mean of ‖q̇_k‖
+  long long static_feet = 0;
+  bool unique = false;
+  bool converged = false;
+  std::string message;
+
+  static std::vector<Column<CompareRow>> columns() {
+    using R = CompareRow;
+    return {value("id", &R::id),
+            value("N", &R::N),
+            value("seed", &R::seed),
+            value("trial", &R::trial),
+            value("spread", &R::spread, "m/s"),
+            value("vx_viscous", &R::vx_viscous, "m/s"),
+            value("vy_viscous", &R::vy_viscous, "m/s"),
+            value("w_viscous", &R::w_viscous, "rad/s"),
+            value("vx_coulomb", &R::vx_coulomb, "m/s"),
+            value("vy_coulomb", &R::vy_coulomb, "m/s"),
+            value("w_coulomb", &R::w_coulomb, "rad/s"),
+            value("diff", &R::diff, "m/s"),
+            value("rel_diff", &R::rel_diff),
+            value("mean_speed", &R::mean_speed, "m/s"),
+            value("static_feet", &R::static_feet),
+            value("unique", &R::unique),
+            value("converged", &R::converged),
+            value("message", &R::message)};
+  }
+};
 
 // §3.1.2.4 and §3.6.2 beyond one example: N legs equally spaced on a circle of the given radius
 // (all at the same height: the spring support gives equal loads), every foot sliding backwards
@@ -338,7 +403,7 @@ const std::vector<std::string> kCompareColumns = {
 // m/s per component. Each trial solves both balances; diff = ‖(Δv_x, Δv_y, radius·Δω)‖ between
 // them (the largest difference of a foot's velocity at the rim), rel_diff = diff / the mean foot
 // speed ‖q̇_k‖.
-PointResult run_compare(const Point& point) {
+Rows<CompareRow> run_compare(const Point& point) {
   const CompareInputs in = read_compare(point);
   const int n = static_cast<int>(in.N);
   const contact::Robot robot = contact::uniform_robot(n, 10.0, 1.0, 1.0);
@@ -348,7 +413,7 @@ PointResult run_compare(const Point& point) {
     frame.q.col(k) = Eigen::Vector3d(in.radius * std::cos(a), in.radius * std::sin(a), -0.1);
   }
   contact::spring_support(robot, frame);
-  PointResult out;
+  Rows<CompareRow> out;
   for (long long trial = 0; trial < in.trials; ++trial) {
     Random rng(static_cast<std::uint64_t>(in.seed), static_cast<std::uint64_t>(trial));
     double mean_speed = 0.0;
@@ -365,11 +430,9 @@ PointResult run_compare(const Point& point) {
     const contact::FrictionSummary& cs = frame.friction;
     const Eigen::Vector3d d = visc - coul;
     const double diff = std::sqrt(d(0) * d(0) + d(1) * d(1) + in.radius * in.radius * d(2) * d(2));
-    out.rows.push_back(Row{point.id, in.N, in.seed, trial, in.spread, visc(0), visc(1), visc(2),
-                           coul(0), coul(1), coul(2), diff, diff / mean_speed, mean_speed,
-                           static_cast<long long>(cs.static_feet),
-                           static_cast<long long>(cs.unique ? 1 : 0),
-                           static_cast<long long>(cs.converged ? 1 : 0), cs.message});
+    out.rows.push_back({point.id, in.N, in.seed, trial, in.spread, visc(0), visc(1), visc(2),
+                        coul(0), coul(1), coul(2), diff, diff / mean_speed, mean_speed,
+                        cs.static_feet, cs.unique, cs.converged, cs.message});
     if (!cs.converged && !out.failed) {
       out.failed = true;
       out.message =
@@ -422,68 +485,97 @@ MapInputs read_map(const Point& point) {
   return in;
 }
 
-const std::vector<std::string> kMapColumns = {
-    "id",    "robot", "row",    "law",       "epsilon",    "foot",     "vx",     "vy",
-    "omega", "Fx",    "Fy",     "Mz",        "F_norm",     "qx",       "qy",     "qdx",
-    "qdy",   "Fz",    "unique", "converged", "iterations", "residual", "message"};
+/// One row of a force map: a "foot", a "balance" or a "grid" row (or a lone "support" row when
+/// the spring support finds no balance). A row's cells that do not apply to its kind are NaN
+/// (numbers), empty (texts) or −1 (foot).
+struct ForceMapRow {
+  long long id = 0;
+  std::string robot;      ///< the frame file
+  std::string row;        ///< foot | balance | grid | support
+  std::string law;        ///< viscous | coulomb | epsilon (balance, grid)
+  double epsilon = kNaN;  ///< ε of an epsilon balance, m/s
+  long long foot = -1;    ///< the foot of a foot row
+  double vx = kNaN;       ///< body velocity: a foot's rest velocity, a balance, a grid point
+  double vy = kNaN;
+  double omega = kNaN;
+  double Fx = kNaN;  ///< Σ F_k at (vx, vy, omega)
+  double Fy = kNaN;
+  double Mz = kNaN;      ///< Σ (q_k × F_k)_z at (vx, vy, omega)
+  double F_norm = kNaN;  ///< ‖Σ F_k‖
+  double qx = kNaN;      ///< a foot's position, velocity relative to the body and load
+  double qy = kNaN;
+  double qdx = kNaN;
+  double qdy = kNaN;
+  double Fz = kNaN;
+  double unique = kNaN;  ///< a balance's solver summary (0/1, 0/1, count; NaN elsewhere)
+  double converged = kNaN;
+  double iterations = kNaN;
+  double residual = kNaN;
+  std::string message;
 
-/// Column positions of kMapColumns.
-namespace M {
-enum : std::size_t {
-  kId,
-  kRobot,
-  kRow,
-  kLaw,
-  kEpsilon,
-  kFoot,
-  kVx,
-  kVy,
-  kOmega,
-  kFx,
-  kFy,
-  kMz,
-  kFNorm,
-  kQx,
-  kQy,
-  kQdx,
-  kQdy,
-  kFz,
-  kUnique,
-  kConverged,
-  kIterations,
-  kResidual,
-  kMessage
+  static std::vector<Column<ForceMapRow>> columns() {
+    using R = ForceMapRow;
+    return {value("id", &R::id),
+            value("robot", &R::robot),
+            value("row", &R::row),
+            value("law", &R::law),
+            value("epsilon", &R::epsilon, "m/s"),
+            value("foot", &R::foot),
+            value("vx", &R::vx, "m/s"),
+            value("vy", &R::vy, "m/s"),
+            value("omega", &R::omega, "rad/s"),
+            value("Fx", &R::Fx, "N"),
+            value("Fy", &R::Fy, "N"),
+            value("Mz", &R::Mz, "N m"),
+            value("F_norm", &R::F_norm, "N"),
+            value("qx", &R::qx, "m"),
+            value("qy", &R::qy, "m"),
+            value("qdx", &R::qdx, "m/s"),
+            value("qdy", &R::qdy, "m/s"),
+            value("Fz", &R::Fz, "N"),
+            value("unique", &R::unique),
+            value("converged", &R::converged),
+            value("iterations", &R::iterations),
+            value("residual", &R::residual),
+            value("message", &R::message)};
+  }
 };
-}  // namespace M
+
+const char* law_name(ForceLaw law) {
+  return law == ForceLaw::kViscousCoulomb ? "viscous" : "coulomb";
+}
 
 // Thesis Fig. 3.2: the robot's loads from the spring support (§3.3); then
 //  * one "foot" row per foot in contact: position, velocity relative to the body, load, and the
 //    body velocity (ω = 0) that puts it at rest (vx, vy = −q̇_xy: a point discontinuity of the
 //    Coulomb force map);
 //  * one "balance" row per law: the full force–moment balance (v_x, v_y, ω) from the library
-//    solvers, and with eps_n > 0 the ε-family of eq. 3.14 from eps_max down to eps_min;
+//    solvers, and with eps_n > 0 the ε-family of eq. 3.14 from eps_max down to eps_min; its
+//    Fx, Fy, Mz are the viscous-Coulomb sums on the viscous row and the Coulomb sums on the
+//    others (on an ε row: how far its balance is from Coulomb's);
 //  * n × n "grid" rows per law: Σ F and Σ M_z at (v_x, v_y, ω = 0), F_norm = ‖Σ F‖.
 // The grid spans the feet's rest velocities and the balances, 25 % wider, unless given.
-PointResult run_map(const Point& point) {
+Rows<ForceMapRow> run_map(const Point& point) {
   MapInputs in = read_map(point);
   const contact::Robot& robot = in.robot->robot;
   contact::Frame& frame = in.robot->frame;
-  PointResult out;
-  const auto row = [&](const char* kind, const std::string& law, double eps, long long foot) {
-    Row r{point.id, in.robot_name, std::string(kind), law, eps, foot};
-    r.resize(kMapColumns.size(), kNaN);
-    r[M::kMessage] = std::string();
+  Rows<ForceMapRow> out;
+  const auto row = [&](const char* kind, std::string law, double eps, long long foot) {
+    ForceMapRow r;
+    r.id = point.id;
+    r.robot = in.robot_name;
+    r.row = kind;
+    r.law = std::move(law);
+    r.epsilon = eps;
+    r.foot = foot;
     return r;
   };
   contact::spring_support(robot, frame);
-  using Status = contact::SupportSummary::Status;
-  if (frame.support.status == Status::kUnsupported ||
-      frame.support.status == Status::kIterationLimit) {
+  if (const std::string failure = support_failure(frame); !failure.empty()) {
     out.failed = true;
-    out.message = std::string("spring support: ") + contact::status_name(frame.support.status) +
-                  (frame.support.message.empty() ? "" : ": " + frame.support.message);
-    Row r = row("support", "", kNaN, -1);
-    r.back() = out.message;
+    out.message = failure;
+    ForceMapRow r = row("support", "", kNaN, -1);
+    r.message = failure;
     out.rows.push_back(std::move(r));
     return out;
   }
@@ -500,14 +592,14 @@ PointResult run_map(const Point& point) {
     if (frame.contact[static_cast<std::size_t>(k)] == 0) {
       continue;
     }
-    Row r = row("foot", "", kNaN, k);
-    r[M::kVx] = -frame.qdot(0, k);
-    r[M::kVy] = -frame.qdot(1, k);
-    r[M::kQx] = frame.q(0, k);
-    r[M::kQy] = frame.q(1, k);
-    r[M::kQdx] = frame.qdot(0, k);
-    r[M::kQdy] = frame.qdot(1, k);
-    r[M::kFz] = frame.Fz(k);
+    ForceMapRow r = row("foot", "", kNaN, k);
+    r.vx = -frame.qdot(0, k);
+    r.vy = -frame.qdot(1, k);
+    r.qx = frame.q(0, k);
+    r.qy = frame.q(1, k);
+    r.qdx = frame.qdot(0, k);
+    r.qdy = frame.qdot(1, k);
+    r.Fz = frame.Fz(k);
     extend(-frame.qdot(0, k), -frame.qdot(1, k));
     out.rows.push_back(std::move(r));
   }
@@ -520,21 +612,22 @@ PointResult run_map(const Point& point) {
       friction::solve_epsilon(robot, frame, eps);
     }
     const Eigen::Vector3d x = frame.v_body;
-    const PlanarSum sum = planar_forces(robot, frame, x.head<2>(), x(2),
-                                        law == "viscous" ? Law::kViscous : Law::kCoulomb);
-    Row r = row("balance", law, eps, -1);
-    r[M::kVx] = x(0);
-    r[M::kVy] = x(1);
-    r[M::kOmega] = x(2);
-    r[M::kFx] = sum.F(0);
-    r[M::kFy] = sum.F(1);
-    r[M::kMz] = sum.Mz;
-    r[M::kFNorm] = sum.F.norm();
-    r[M::kUnique] = static_cast<long long>(frame.friction.unique ? 1 : 0);
-    r[M::kConverged] = static_cast<long long>(frame.friction.converged ? 1 : 0);
-    r[M::kIterations] = static_cast<long long>(frame.friction.iterations);
-    r[M::kResidual] = frame.friction.residual;
-    r[M::kMessage] = frame.friction.message;
+    const friction::PlanarSum sum =
+        friction::planar_forces(robot, frame, x.head<2>(), x(2),
+                                law == "viscous" ? ForceLaw::kViscousCoulomb : ForceLaw::kCoulomb);
+    ForceMapRow r = row("balance", law, eps, -1);
+    r.vx = x(0);
+    r.vy = x(1);
+    r.omega = x(2);
+    r.Fx = sum.force(0);
+    r.Fy = sum.force(1);
+    r.Mz = sum.moment;
+    r.F_norm = sum.force.norm();
+    r.unique = frame.friction.unique ? 1.0 : 0.0;
+    r.converged = frame.friction.converged ? 1.0 : 0.0;
+    r.iterations = frame.friction.iterations;
+    r.residual = frame.friction.residual;
+    r.message = frame.friction.message;
     if (!frame.friction.converged && !out.failed) {
       out.failed = true;
       out.message = law + " balance did not converge: " + frame.friction.message;
@@ -558,18 +651,19 @@ PointResult run_map(const Point& point) {
   const double y0 = in.vy_min.value_or(lo_y - my), y1 = in.vy_max.value_or(hi_y + my);
   const std::vector<double> xs = linspace(x0, x1, in.n);
   const std::vector<double> ys = linspace(y0, y1, in.n);
-  for (Law law : {Law::kCoulomb, Law::kViscous}) {
+  for (ForceLaw law : {ForceLaw::kCoulomb, ForceLaw::kViscousCoulomb}) {
     for (double y : ys) {
       for (double x : xs) {
-        const PlanarSum sum = planar_forces(robot, frame, Eigen::Vector2d(x, y), 0.0, law);
-        Row r = row("grid", law_name(law), kNaN, -1);
-        r[M::kVx] = x;
-        r[M::kVy] = y;
-        r[M::kOmega] = 0.0;
-        r[M::kFx] = sum.F(0);
-        r[M::kFy] = sum.F(1);
-        r[M::kMz] = sum.Mz;
-        r[M::kFNorm] = sum.F.norm();
+        const friction::PlanarSum sum =
+            friction::planar_forces(robot, frame, Eigen::Vector2d(x, y), 0.0, law);
+        ForceMapRow r = row("grid", law_name(law), kNaN, -1);
+        r.vx = x;
+        r.vy = y;
+        r.omega = 0.0;
+        r.Fx = sum.force(0);
+        r.Fy = sum.force(1);
+        r.Mz = sum.moment;
+        r.F_norm = sum.force.norm();
         out.rows.push_back(std::move(r));
       }
     }
@@ -581,39 +675,67 @@ PointResult run_map(const Point& point) {
 
 const std::vector<std::string_view> kPathKeys = {"robot"};
 
-const std::vector<std::string> kPathColumns = {
-    "id",       "robot",   "row",  "step",         "foot",        "alpha",    "beta",   "z",
-    "contacts", "changed", "mask", "target_alpha", "target_beta", "target_z", "qx",     "qy",
-    "qz",       "K",       "Fz",   "status",       "iterations",  "residual", "message"};
+void check_path(const Point& point) {
+  const Reader r(point, "legged_support_path", kPathKeys);
+  std::string name;
+  (void)read_robot(r, "robot", name);
+}
 
-/// Column positions of kPathColumns.
-namespace P {
-enum : std::size_t {
-  kId,
-  kRobot,
-  kRow,
-  kStep,
-  kFoot,
-  kAlpha,
-  kBeta,
-  kZ,
-  kContacts,
-  kChanged,
-  kMask,
-  kTargetAlpha,
-  kTargetBeta,
-  kTargetZ,
-  kQx,
-  kQy,
-  kQz,
-  kK,
-  kFz,
-  kStatus,
-  kIterations,
-  kResidual,
-  kMessage
+/// One row of a support path: a "foot" row per leg, a "step" row per recorded state of the
+/// search and one "result" row. A row's cells that do not apply to its kind are NaN (numbers),
+/// empty (texts) or −1 (step, foot).
+struct SupportPathRow {
+  long long id = 0;
+  std::string robot;    ///< the frame file
+  std::string row;      ///< foot | step | result
+  long long step = -1;  ///< a step's index; on the result row, the number of steps
+  long long foot = -1;  ///< the leg of a foot row
+  double alpha = kNaN;  ///< the state (eq. 3.6) of a step or the result
+  double beta = kNaN;
+  double z = kNaN;
+  double contacts = kNaN;      ///< feet in contact (step, result)
+  double changed = kNaN;       ///< the leg whose contact changed at a step (−1: none)
+  std::string mask;            ///< contact set, "C" in contact, "-" in the air, one per leg
+  double target_alpha = kNaN;  ///< the balance of the step's contact set (eq. 3.9), if any
+  double target_beta = kNaN;
+  double target_z = kNaN;
+  double qx = kNaN;  ///< a foot's position, stiffness and final load
+  double qy = kNaN;
+  double qz = kNaN;
+  double K = kNaN;
+  double Fz = kNaN;
+  std::string status;        ///< the search's outcome (result)
+  double iterations = kNaN;  ///< (result)
+  double residual = kNaN;    ///< (result)
+  std::string message;
+
+  static std::vector<Column<SupportPathRow>> columns() {
+    using R = SupportPathRow;
+    return {value("id", &R::id),
+            value("robot", &R::robot),
+            value("row", &R::row),
+            value("step", &R::step),
+            value("foot", &R::foot),
+            value("alpha", &R::alpha),
+            value("beta", &R::beta),
+            value("z", &R::z, "m"),
+            value("contacts", &R::contacts),
+            value("changed", &R::changed),
+            value("mask", &R::mask),
+            value("target_alpha", &R::target_alpha),
+            value("target_beta", &R::target_beta),
+            value("target_z", &R::target_z, "m"),
+            value("qx", &R::qx, "m"),
+            value("qy", &R::qy, "m"),
+            value("qz", &R::qz, "m"),
+            value("K", &R::K, "N/m"),
+            value("Fz", &R::Fz, "N"),
+            value("status", &R::status),
+            value("iterations", &R::iterations),
+            value("residual", &R::residual),
+            value("message", &R::message)};
+  }
 };
-}  // namespace P
 
 /// The balance of a fixed contact set (eq. 3.9, as the minimizer of the quadratic potential of
 /// contact/spring_support.hpp): Σ_{k∈C} K_k h_k a_k + Mg e_z = 0 with a_k = (q_y, −q_x, 1) in
@@ -644,7 +766,7 @@ std::optional<Eigen::Vector3d> contact_set_balance(const contact::Robot& robot,
   return cod.solve(rhs);
 }
 
-PointResult run_path(const Point& point) {
+Rows<SupportPathRow> run_path(const Point& point) {
   const Reader r(point, "legged_support_path", kPathKeys);
   std::string name;
   contact::FrameInput in = read_robot(r, "robot", name);
@@ -655,23 +777,24 @@ PointResult run_path(const Point& point) {
   options.path = &path;
   contact::spring_support(robot, f, options);
 
-  PointResult out;
+  Rows<SupportPathRow> out;
   const auto row = [&](const char* kind, long long step, long long foot) {
-    Row x{point.id, name, std::string(kind), step, foot};
-    x.resize(kPathColumns.size(), kNaN);
-    x[P::kMask] = std::string();
-    x[P::kStatus] = std::string();
-    x[P::kMessage] = std::string();
+    SupportPathRow x;
+    x.id = point.id;
+    x.robot = name;
+    x.row = kind;
+    x.step = step;
+    x.foot = foot;
     return x;
   };
   const int n = f.legs();
   for (int j = 0; j < n; ++j) {
-    Row x = row("foot", -1, j);
-    x[P::kQx] = f.q(0, j);
-    x[P::kQy] = f.q(1, j);
-    x[P::kQz] = f.q(2, j);
-    x[P::kK] = robot.K(j);
-    x[P::kFz] = f.Fz(j);
+    SupportPathRow x = row("foot", -1, j);
+    x.qx = f.q(0, j);
+    x.qy = f.q(1, j);
+    x.qz = f.q(2, j);
+    x.K = robot.K(j);
+    x.Fz = f.Fz(j);
     out.rows.push_back(std::move(x));
   }
   // The contact set along the path ("C" in contact, "-" in the air, one character per leg): the
@@ -693,48 +816,43 @@ PointResult run_path(const Point& point) {
       char& c = mask[static_cast<std::size_t>(s.changed)];
       c = c == 'C' ? '-' : 'C';
     }
-    Row x = row("step", static_cast<long long>(i), -1);
-    x[P::kAlpha] = s.alpha;
-    x[P::kBeta] = s.beta;
-    x[P::kZ] = s.z;
-    x[P::kContacts] = static_cast<long long>(s.contacts);
-    x[P::kChanged] = static_cast<long long>(s.changed);
-    x[P::kMask] = mask;
+    SupportPathRow x = row("step", static_cast<long long>(i), -1);
+    x.alpha = s.alpha;
+    x.beta = s.beta;
+    x.z = s.z;
+    x.contacts = s.contacts;
+    x.changed = s.changed;
+    x.mask = mask;
     if (const auto t = contact_set_balance(robot, f, mask)) {
-      x[P::kTargetAlpha] = (*t)(0);
-      x[P::kTargetBeta] = (*t)(1);
-      x[P::kTargetZ] = (*t)(2);
+      x.target_alpha = (*t)(0);
+      x.target_beta = (*t)(1);
+      x.target_z = (*t)(2);
     }
     out.rows.push_back(std::move(x));
   }
-  Row x = row("result", static_cast<long long>(path.size()), -1);
-  x[P::kAlpha] = f.alpha;
-  x[P::kBeta] = f.beta;
-  x[P::kZ] = f.z;
+  SupportPathRow x = row("result", static_cast<long long>(path.size()), -1);
+  x.alpha = f.alpha;
+  x.beta = f.beta;
+  x.z = f.z;
   int contacts = 0;
-  std::string final_mask;
   for (int j = 0; j < n; ++j) {
     contacts += f.contact[static_cast<std::size_t>(j)] != 0 ? 1 : 0;
-    final_mask += f.contact[static_cast<std::size_t>(j)] != 0 ? 'C' : '-';
+    x.mask += f.contact[static_cast<std::size_t>(j)] != 0 ? 'C' : '-';
   }
-  x[P::kContacts] = static_cast<long long>(contacts);
-  x[P::kMask] = final_mask;
-  x[P::kStatus] = std::string(contact::status_name(f.support.status));
-  x[P::kIterations] = static_cast<long long>(f.support.iterations);
-  x[P::kResidual] = f.support.residual;
-  x[P::kMessage] = f.support.message;
+  x.contacts = contacts;
+  x.status = contact::status_name(f.support.status);
+  x.iterations = f.support.iterations;
+  x.residual = f.support.residual;
+  x.message = f.support.message;
   out.rows.push_back(std::move(x));
-  using Status = contact::SupportSummary::Status;
-  if (f.support.status == Status::kIterationLimit || f.support.status == Status::kUnsupported) {
+  if (std::string failure = support_failure(f); !failure.empty()) {
     out.failed = true;
-    out.message = std::string("spring support: ") + contact::status_name(f.support.status) +
-                  (f.support.message.empty() ? "" : ": " + f.support.message);
+    out.message = std::move(failure);
   }
   return out;
 }
 
-// --- legged_eps_error
-// -----------------------------------------------------------------------------
+// --- legged_eps_error --------------------------------------------------------------------------
 
 const std::vector<std::string_view> kEpsKeys = {"model", "epsilon", "speed", "shape",
                                                 "range", "n",       "angles"};
@@ -772,8 +890,33 @@ EpsInputs read_eps(const Point& point) {
   return in;
 }
 
-const std::vector<std::string> kEpsColumns = {"id",  "model", "epsilon", "speed", "shape",
-                                              "dvx", "dvy",   "dv_rel",  "angle", "rel_error"};
+/// One row per velocity error δv.
+struct EpsErrorRow {
+  long long id = 0;
+  std::string model;      ///< viscous | tangent | epsilon
+  double epsilon = kNaN;  ///< ε of the epsilon model, m/s (NaN otherwise)
+  double speed = 0.0;     ///< |v|, m/s
+  std::string shape;      ///< grid | polar
+  double dvx = 0.0;       ///< δv/|v|
+  double dvy = 0.0;
+  double dv_rel = 0.0;  ///< |δv|/|v|
+  double angle = 0.0;   ///< direction of δv, rad
+  double rel_error = 0.0;
+
+  static std::vector<Column<EpsErrorRow>> columns() {
+    using R = EpsErrorRow;
+    return {value("id", &R::id),
+            value("model", &R::model),
+            value("epsilon", &R::epsilon, "m/s"),
+            value("speed", &R::speed, "m/s"),
+            value("shape", &R::shape),
+            value("dvx", &R::dvx),
+            value("dvy", &R::dvy),
+            value("dv_rel", &R::dv_rel),
+            value("angle", &R::angle, "rad"),
+            value("rel_error", &R::rel_error)};
+  }
+};
 
 // Thesis §3.6.2, Fig. 3.15: one foot with μ F_z = 1 slides at v = (speed, 0) + δv. The Coulomb
 // force is F_C = −u/|u|. The models, each equal to F_C at δv = 0 (calibrated at v):
@@ -782,12 +925,12 @@ const std::vector<std::string> kEpsColumns = {"id",  "model", "epsilon", "speed"
 //   epsilon  eq. 3.14: F = −u (ε + |u|)/(ε + |u|²), divided by its value factor at v
 // rel_error = |F − F_C| / |F_C|. Grid: δv/|v| over [−range, range]², n × n. Polar: |δv|/|v| =
 // range·i/(n − 1), i = 0 … n − 1, at `angles` directions.
-PointResult run_eps(const Point& point) {
+Rows<EpsErrorRow> run_eps(const Point& point) {
   const EpsInputs in = read_eps(point);
   const double v0 = in.speed;
   const auto phi = [&](double s) { return (in.epsilon + s) / (in.epsilon + s * s); };
   const double calib = in.model == "epsilon" ? 1.0 / (phi(v0) * v0) : 1.0 / v0;
-  PointResult out;
+  Rows<EpsErrorRow> out;
   const auto emit = [&](double dx, double dy, double angle) {
     const Eigen::Vector2d u(v0 + dx, dy);
     const double s = u.norm();
@@ -801,8 +944,8 @@ PointResult run_eps(const Point& point) {
       Fm = -calib * phi(s) * u;
     }
     const double err = s > 0.0 ? (Fm - Fc).norm() / Fc.norm() : kNaN;
-    out.rows.push_back(Row{point.id, in.model, in.epsilon, v0, in.shape, dx / v0, dy / v0,
-                           std::hypot(dx, dy) / v0, angle, err});
+    out.rows.push_back({point.id, in.model, in.epsilon, v0, in.shape, dx / v0, dy / v0,
+                        std::hypot(dx, dy) / v0, angle, err});
   };
   if (in.shape == "grid") {
     const std::vector<double> g = linspace(-in.range, in.range, in.n);
@@ -826,34 +969,33 @@ PointResult run_eps(const Point& point) {
 
 }  // namespace
 
-std::vector<PointKind> points::legged_kinds() {
-  return legacy_kinds({
-      {"legged_1d",
-       "Fig. 3.1: N feet on a line, equal loads, random speeds: Coulomb vs viscous-Coulomb body "
-       "velocity against the median and mean (one row per trial)",
-       k1dColumns, [](const Point& p) { (void)read_1d(p); }, run_1d},
-      {"legged_compare",
-       "§3.6.2: viscous-Coulomb vs Coulomb balance of N legs on a circle with random foot "
-       "velocities around (−1, 0) (one row per trial)",
-       kCompareColumns, [](const Point& p) { (void)read_compare(p); }, run_compare},
-      {"legged_force_map",
-       "Fig. 3.2: total planar force over a (v_x, v_y) grid at ω = 0 under Coulomb and "
-       "viscous-Coulomb friction, the feet's rest velocities and each law's balance",
-       kMapColumns, [](const Point& p) { (void)read_map(p); }, run_map},
-      {"legged_support_path",
-       "Figs. 3.3, 3.4: the spring-support search path in (α, β, z) with its contact sets",
-       kPathColumns,
-       [](const Point& p) {
-         const Reader r(p, "legged_support_path", kPathKeys);
-         std::string name;
-         (void)read_robot(r, "robot", name);
-       },
-       run_path},
-      {"legged_eps_error",
-       "Fig. 3.15: relative error of viscous-type friction against Coulomb friction near v = "
-       "(|v|, 0) (one row per δv)",
-       kEpsColumns, [](const Point& p) { (void)read_eps(p); }, run_eps},
-  });
+std::vector<PointKind> legged_kinds() {
+  return {
+      make_point_kind<OneDRow>(
+          "legged_1d",
+          "Fig. 3.1: N feet on a line, equal loads, random speeds: Coulomb vs viscous-Coulomb body "
+          "velocity against the median and mean (one row per trial)",
+          Timed::kNo, [](const Point& p) { (void)read_1d(p); }, run_1d),
+      make_point_kind<CompareRow>(
+          "legged_compare",
+          "§3.6.2: viscous-Coulomb vs Coulomb balance of N legs on a circle with random foot "
+          "velocities around (−1, 0) (one row per trial)",
+          Timed::kNo, [](const Point& p) { (void)read_compare(p); }, run_compare),
+      make_point_kind<ForceMapRow>(
+          "legged_force_map",
+          "Fig. 3.2: total planar force over a (v_x, v_y) grid at ω = 0 under Coulomb and "
+          "viscous-Coulomb friction, the feet's rest velocities and each law's balance",
+          Timed::kNo, [](const Point& p) { (void)read_map(p); }, run_map),
+      make_point_kind<SupportPathRow>(
+          "legged_support_path",
+          "Figs. 3.3, 3.4: the spring-support search path in (α, β, z) with its contact sets",
+          Timed::kNo, check_path, run_path),
+      make_point_kind<EpsErrorRow>(
+          "legged_eps_error",
+          "Fig. 3.15: relative error of viscous-type friction against Coulomb friction near v = "
+          "(|v|, 0) (one row per δv)",
+          Timed::kNo, [](const Point& p) { (void)read_eps(p); }, run_eps),
+  };
 }
 
-}  // namespace slipwalk::sweeps
+}  // namespace slipwalk::sweeps::points

@@ -1,5 +1,5 @@
-// The multi-legged model's point functions (sweeps/legged_points.cpp): check() rejects bad keys
-// and values naming the spec key; run() gives the known answers on tiny cases (§3.1.2: Coulomb =
+// The multi-legged model's point kinds (sweeps/points/legged.cpp): check() rejects bad keys and
+// values naming the spec key; run() gives the known answers on tiny cases (§3.1.2: Coulomb =
 // −median, viscous-Coulomb = −mean; §3.6.2: the single-foot force errors in closed form).
 #include <gtest/gtest.h>
 
@@ -12,9 +12,10 @@
 #include "contact/frame_json.hpp"
 #include "contact/spring_support.hpp"
 #include "core/error.hpp"
+#include "support/point_rows.hpp"
 #include "sweeps/engine/point_kind.hpp"
-#include "sweeps/points/families.hpp"
 #include "sweeps/engine/spec.hpp"
+#include "sweeps/points/families.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -29,13 +30,7 @@ std::vector<Point> points(const std::string& kind, const std::string& body,
   return expand(parse_spec(text, path));
 }
 
-const PointKind& fn(const std::string& name) {
-  const PointKind* f = find_point_kind(points::all_kinds(), name);
-  if (f == nullptr) {
-    throw std::runtime_error("no point function " + name);
-  }
-  return *f;
-}
+const PointKind& fn(const std::string& name) { return test_support::point_kind(name); }
 
 /// Checks then runs every point; the rows of all points.
 std::vector<Cells> run_all(const std::string& kind, const std::vector<Point>& pts) {
@@ -53,12 +48,7 @@ std::vector<Cells> run_all(const std::string& kind, const std::vector<Point>& pt
 }
 
 std::size_t col(const std::string& kind, const std::string& name) {
-  const auto c = fn(kind).column_names();
-  const auto it = std::find(c.begin(), c.end(), name);
-  if (it == c.end()) {
-    throw std::runtime_error("no column " + name);
-  }
-  return static_cast<std::size_t>(it - c.begin());
+  return test_support::column(fn(kind), name);
 }
 
 double num(const Cells& row, std::size_t i) {
