@@ -1,5 +1,5 @@
 #pragma once
-// The built-in robots and gaits of thesis §3.5 and §5.5 (issue 6). Each factory validates its
+// The built-in robots and gaits of thesis §3.5 and §5.5. Each factory validates its
 // options (core::InputError naming the option on a bad value) and returns a Walker.
 #include <numbers>
 

@@ -1,21 +1,22 @@
-// compose(): a scene to a simulator, assembled once. The walker comes from the robot factories;
-// the trajectory kernel is connection::integrate for one Effects bundle, picked here by the
-// effects the scene names: each effect becomes a std::variant of its policies (the first one is
-// "off"), and one std::visit over all of them instantiates every bundle a scene can name, in this
-// file only, and keeps the one this scene names. The per-step code then has no branch for an
+// compose(): a scene to a simulator, assembled once. The walker comes from the gait's table entry
+// (gaits.hpp); the trajectory kernel is connection::integrate for one Effects bundle, picked here
+// by the effects the scene names: each effect becomes a std::variant of its policies (the first
+// one is "off"; the friction law's come from its table entry, friction_laws.hpp), and one
+// std::visit over all of them instantiates every bundle a scene can name, in this file only, and
+// keeps the one this scene names. The per-step code then has no branch for an
 // effect that is off (DESIGN.md: Only the effects a scene calls for).
 #include <utility>
 #include <variant>
 
 #include "connection/trajectory_kernel.hpp"
 #include "core/error.hpp"
+#include "scene/friction_laws.hpp"
 #include "scene/scene.hpp"
 
 namespace slipwalk::scene {
 
 namespace {
 
-using LawPolicy = std::variant<connection::ViscousCoulombKernel, connection::CoulombKernel>;
 using FilterPolicy = std::variant<connection::NoFilter, connection::IirFilter>;
 using ResidualPolicy = std::variant<connection::NoResidual, connection::LinearResidual>;
 using NoisePolicy = std::variant<connection::NoNoise, connection::PoseNoise>;
@@ -30,14 +31,6 @@ GroundPolicy ground_policy(const terrain::Terrain& terrain) {
     return connection::StairsGround{*stairs, {}, {}};
   }
   return connection::FlatGround{};
-}
-
-LawPolicy law_policy(const FrictionEffect& friction) {
-  if (friction.law == connection::FrictionLaw::kCoulomb) {
-    return connection::CoulombKernel{friction.coulomb};
-  }
-  // Isotropic and anisotropic viscous-Coulomb are one solver: anisotropy is the robot's w.
-  return connection::ViscousCoulombKernel{};
 }
 
 FilterPolicy filter_policy(const std::optional<FilterEffect>& filter) {
@@ -84,14 +77,12 @@ Simulator::Kernel compose_kernel(const Scene& scene) {
                                              decltype(noise), decltype(ground)>{
             law, filter, residual, noise, ground});
       },
-      law_policy(scene.friction), filter_policy(scene.filter), residual_policy(scene.residual),
-      noise_policy(scene.noise), ground_policy(scene.terrain));
+      friction_law_of(scene.friction).policy(scene.friction), filter_policy(scene.filter),
+      residual_policy(scene.residual), noise_policy(scene.noise), ground_policy(scene.terrain));
 }
 
 std::string kernel_name(const Scene& scene) {
-  std::string name = scene.friction.law == connection::FrictionLaw::kCoulomb ? "coulomb"
-                     : scene.friction.anisotropic                            ? "anisotropic"
-                                                                             : "viscous";
+  std::string name(friction_law_of(scene.friction).name);
   if (scene.filter) {
     name.append("+filter");
   }
@@ -107,27 +98,6 @@ std::string kernel_name(const Scene& scene) {
   return name;
 }
 
-robots::Walker make_walker(const Gait& gait) {
-  return std::visit(
-      [](const auto& g) -> robots::Walker {
-        using G = std::decay_t<decltype(g)>;
-        if constexpr (std::is_same_v<G, robots::TripodGait>) {
-          return robots::bigant_tripod(g);
-        } else if constexpr (std::is_same_v<G, robots::MetachronalGait>) {
-          return robots::bigant_metachronal(g);
-        } else if constexpr (std::is_same_v<G, robots::UndulationGait>) {
-          return robots::multipod(g);
-        } else if constexpr (std::is_same_v<G, robots::TrotGait>) {
-          return robots::quadruped_trot(g);
-        } else if constexpr (std::is_same_v<G, LegTableGait>) {
-          return leg_table_walker(g);
-        } else {
-          return robots::disk_robot(g);
-        }
-      },
-      gait);
-}
-
 connection::TrajectorySummary Simulator::run(const connection::TrajectorySink& sink) const {
   connection::TrajectoryData data(walker.robot);
   return kernel(walker, options, data, sink);
@@ -140,16 +110,7 @@ Simulator compose(const Scene& scene) {
   } catch (const core::InputError& e) {
     throw core::InputError(scene.gait_origin, e.what());
   }
-  if (scene.friction.anisotropic) {
-    // One w for every leg, or one per leg (the reader checked the count).
-    contact::Robot& r = sim.walker.robot;
-    if (scene.friction.w.cols() == 1) {
-      r.w = scene.friction.w.replicate(1, r.legs());
-    } else {
-      r.w = scene.friction.w;
-    }
-    contact::validate(r);
-  }
+  friction_law_of(scene.friction).fit_robot(scene.friction, sim.walker.robot);
   sim.options.dt = scene.dt;
   sim.options.steps = scene.steps;
   connection::validate(sim.options);

@@ -1,4 +1,4 @@
-// The issue-8 effects of a scene: anisotropy, the residual file, noise (effects.hpp).
+// The readers of a scene's anisotropy, residual file and noise (effects.hpp).
 #include "scene/effects.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// Readers of the issue-8 effects of a scene (scene.hpp has the format): anisotropic friction's w,
+// Readers of some effects of a scene (scene.hpp has the format): anisotropic friction's w,
 // the residual B of §5.3.1 from its file, and the measurement noise. Used by scene.cpp; the
 // residual file reader is public for tests and other users of B files.
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #pragma once
-// A robot given as a leg table in a scene (issue 8): each leg's hip position in the body frame,
+// A robot given as a leg table in a scene: each leg's hip position in the body frame,
 // its spring stiffness K and friction coefficient μ, and its phase in a parametric foot path that
 // every leg follows about its hip. It is for robots the built-in walkers (robots/robots.hpp) do
 // not cover; the foot path is the simplest honest gait: a fore-aft sweep with a lifted swing.

@@ -1,5 +1,5 @@
 #pragma once
-// The trajectory CSV of a scene run and its provenance sidecar (issue 6), shared by
+// The trajectory CSV of a scene run and its provenance sidecar, shared by
 // `slipwalk run` and the [[scene]] entries of a study (`slipwalk reproduce`).
 //
 // Columns: t, x, y, theta (world pose; theta unwrapped; with [noise] the measured pose), vx, vy,

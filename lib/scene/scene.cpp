@@ -7,11 +7,11 @@
 #include <iterator>
 #include <numbers>
 #include <stdexcept>
-#include <type_traits>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "scene/effects.hpp"
+#include "scene/friction_laws.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace slipwalk::scene {
@@ -20,15 +20,14 @@ namespace {
 
 using core::InputError;
 
-/// Every table a scene may hold and the keys each may hold (toml_reader.hpp uses it to suggest).
+/// Every table a scene may hold and the keys each may hold (toml_reader.hpp uses it to suggest);
+/// the keys of [robot], [gait] and [friction] are those of the gait and law tables.
 const std::vector<TableSchema>& schema() {
   static const std::vector<TableSchema> tables = {
-      {"robot", {"name", "legs", "radius", "stiffness", "mass", "leg"}},
-      {"gait",
-       {"kind", "frequency", "steer", "duty", "sweep", "dphi", "roll_amplitude", "yaw_amplitude",
-        "stride", "swing_height", "height", "lift"}},
+      {"robot", robot_table_keys()},
+      {"gait", gait_table_keys()},
       {"run", {"duration", "dt", "steps"}},
-      {"friction", {"law", "tol", "max_iterations", "w"}},
+      {"friction", friction_table_keys()},
       {"filter", {"gamma"}},
       {"residual", {"file"}},
       {"noise", {"sigma", "sigma_theta", "seed"}},
@@ -102,132 +101,11 @@ const toml::table& required_table(const toml::table& doc, std::string_view name,
   return *t;
 }
 
-/// The gaits each robot walks with; the first is listed first in messages.
-std::vector<std::string_view> gaits_of(std::string_view robot) {
-  if (robot == "bigant") {
-    return {"tripod", "metachronal"};
-  }
-  if (robot == "multipod") {
-    return {"undulation"};
-  }
-  if (robot == "quadruped") {
-    return {"trot"};
-  }
-  if (robot == "legs") {
-    return {"foot_path"};
-  }
-  return {"disk"};
-}
-
-/// The [gait] keys that belong to some gaits only (kind and frequency belong to all).
-struct GaitKey {
-  std::string_view key;
-  std::vector<std::string_view> kinds;  ///< the gaits that have it
-  std::string_view owner;               ///< for messages: "the tripod and trot gaits"
-};
-
-const std::vector<GaitKey>& gait_keys() {
-  static const std::vector<GaitKey> keys = {
-      {"steer", {"tripod"}, "the tripod gait"},
-      {"duty", {"tripod", "trot"}, "the tripod and trot gaits"},
-      {"sweep", {"tripod", "metachronal"}, "the tripod and metachronal gaits"},
-      {"dphi", {"undulation"}, "the undulation gait"},
-      {"roll_amplitude", {"undulation"}, "the undulation gait"},
-      {"yaw_amplitude", {"undulation"}, "the undulation gait"},
-      {"stride", {"trot", "foot_path"}, "the trot and foot_path gaits"},
-      {"height", {"foot_path"}, "the foot_path gait"},
-      {"lift", {"foot_path"}, "the foot_path gait"},
-      {"swing_height", {"trot"}, "the trot gait"},
-  };
-  return keys;
-}
-
-/// Reads `key` into `value` if the table has it (a finite number); ranges are checked here for the
-/// options every gait shares and by the robot factories for the rest (check_with_factory).
+/// Reads `key` into `value` if the table has it (a finite number).
 void read_number(const TableReader& table, std::string_view key, double& value) {
   if (const toml::node* n = table.find(key)) {
     value = table.number(*n, key);
   }
-}
-
-void read_frequency(const TableReader& gait, double& value) {
-  read_number(gait, "frequency", value);
-  if (const toml::node* n = gait.find("frequency")) {
-    gait.check(value > 0.0, *n, "frequency", "must be > 0 Hz, got " + core::format_double(value));
-  }
-}
-
-int read_legs(const TableReader& robot, int value, long long lo, long long hi, bool even) {
-  if (const toml::node* n = robot.find("legs")) {
-    const long long legs = robot.integer(*n, "legs");
-    const bool ok = legs >= lo && legs <= hi && (!even || legs % 2 == 0);
-    robot.check(ok, *n, "legs",
-                (even ? "the multipod has 6, 8, 10 or 12 legs, got "
-                      : "the disk robot has 3 to 1000 legs, got ") +
-                    std::to_string(legs));
-    return static_cast<int>(legs);
-  }
-  return value;
-}
-
-Gait read_gait(const TableReader& robot, const TableReader& gait, const std::string& robot_name,
-               const std::string& path) {
-  const std::string kind = gait.choice(gait.required("kind"), "kind", gaits_of(robot_name));
-  std::string chosen = "kind = '";
-  chosen.append(kind).append("'");
-  for (const GaitKey& k : gait_keys()) {
-    if (std::find(k.kinds.begin(), k.kinds.end(), kind) == k.kinds.end()) {
-      gait.forbid(k.key, k.owner, chosen);
-    }
-  }
-  if (kind == "foot_path") {
-    return read_leg_table(robot, gait, path, schema());
-  }
-  if (kind == "tripod") {
-    robots::TripodGait g;
-    read_frequency(gait, g.frequency);
-    read_number(gait, "steer", g.steer);
-    if (const toml::node* n = gait.find("steer")) {
-      gait.check(std::abs(g.steer) <= 1.0, *n, "steer",
-                 "must be in [-1, 1], got " + core::format_double(g.steer));
-    }
-    read_number(gait, "duty", g.duty);
-    read_number(gait, "sweep", g.sweep);
-    return g;
-  }
-  if (kind == "metachronal") {
-    robots::MetachronalGait g;
-    read_frequency(gait, g.frequency);
-    read_number(gait, "sweep", g.sweep);
-    return g;
-  }
-  if (kind == "undulation") {
-    robots::UndulationGait g;
-    read_frequency(gait, g.frequency);
-    read_number(gait, "dphi", g.dphi);
-    read_number(gait, "roll_amplitude", g.roll_amplitude);
-    read_number(gait, "yaw_amplitude", g.yaw_amplitude);
-    g.legs = read_legs(robot, g.legs, 6, 12, true);
-    read_number(robot, "stiffness", g.stiffness);
-    return g;
-  }
-  if (kind == "trot") {
-    robots::TrotGait g;
-    read_frequency(gait, g.frequency);
-    read_number(gait, "duty", g.duty);
-    read_number(gait, "stride", g.stride);
-    read_number(gait, "swing_height", g.swing_height);
-    return g;
-  }
-  robots::DiskGait g;
-  read_frequency(gait, g.frequency);
-  g.legs = read_legs(robot, g.legs, 3, 1000, false);
-  read_number(robot, "radius", g.radius);
-  if (const toml::node* r = robot.find("radius")) {
-    robot.check(g.radius > 0.0, *r, "radius",
-                "must be > 0 m, got " + core::format_double(g.radius));
-  }
-  return g;
 }
 
 /// The robot factories check their options (robots/check.hpp); an InputError of theirs names the
@@ -287,37 +165,6 @@ void read_run(const TableReader& run, Scene& scene) {
   scene.steps = static_cast<long long>(whole);
 }
 
-void read_friction(const TableReader& friction, Scene& scene, int legs) {
-  const std::string law =
-      friction.choice(friction.required("law"), "law", {"viscous", "anisotropic", "coulomb"});
-  const std::string chosen = "law = '" + law + "'";
-  if (law != "anisotropic") {
-    friction.forbid("w", "the anisotropic law", chosen);
-  }
-  if (law != "coulomb") {
-    scene.friction.law = connection::FrictionLaw::kViscousCoulomb;
-    friction.forbid("tol", "the coulomb law", chosen);
-    friction.forbid("max_iterations", "the coulomb law", chosen);
-    if (law == "anisotropic") {
-      scene.friction.anisotropic = true;
-      scene.friction.w = read_anisotropy(friction, friction.required("w"), legs);
-    }
-    return;
-  }
-  scene.friction.law = connection::FrictionLaw::kCoulomb;
-  if (const toml::node* n = friction.find("tol")) {
-    const double tol = friction.number(*n, "tol");
-    friction.check(tol > 0.0, *n, "tol", "must be > 0, got " + core::format_double(tol));
-    scene.friction.coulomb.tol = tol;
-  }
-  if (const toml::node* n = friction.find("max_iterations")) {
-    const long long m = friction.integer(*n, "max_iterations");
-    friction.check(m >= 1 && m <= 1'000'000, *n, "max_iterations",
-                   "must be from 1 to 1000000, got " + std::to_string(m));
-    scene.friction.coulomb.max_iterations = static_cast<int>(m);
-  }
-}
-
 /// [terrain] (§5.2): kind = "flat" | "slope" | "stairs" and that kind's parameters only.
 terrain::Terrain read_terrain(const TableReader& t) {
   const std::string kind = t.choice(t.required("kind"), "kind", {"flat", "slope", "stairs"});
@@ -367,12 +214,6 @@ terrain::Terrain read_terrain(const TableReader& t) {
 
 }  // namespace
 
-const char* gait_kind(const Gait& gait) {
-  constexpr const char* kNames[] = {"tripod", "metachronal", "undulation",
-                                    "trot",   "disk",        "foot_path"};
-  return kNames[gait.index()];
-}
-
 Scene parse_scene(std::string_view text, const std::string& path) {
   toml::table doc;
   try {
@@ -387,36 +228,20 @@ Scene parse_scene(std::string_view text, const std::string& path) {
 
   // [robot]: which walker; its legs and radius where it has them.
   const TableReader robot(required_table(doc, "robot", path), schema_of("robot"), path, all);
-  scene.robot = robot.choice(robot.required("name"), "name",
-                             {"bigant", "multipod", "quadruped", "disk", "legs"});
-  std::string chosen = "name = '";
-  chosen.append(scene.robot).append("'");
-  if (scene.robot != "multipod" && scene.robot != "disk") {
-    robot.forbid("legs", "the multipod and disk robots", chosen);
-  }
-  if (scene.robot != "disk") {
-    robot.forbid("radius", "the disk robot", chosen);
-  }
-  if (scene.robot != "multipod") {
-    robot.forbid("stiffness", "the multipod robot", chosen);
-  }
-  if (scene.robot != "legs") {
-    robot.forbid("mass", "a leg table (name = 'legs')", chosen);
-    robot.forbid("leg", "a leg table (name = 'legs')", chosen);
-  }
+  scene.robot = robot.choice(robot.required("name"), "name", robot_names());
+  forbid_other_robot_keys(robot, scene.robot);
 
   // [gait]: the gait of that robot and its parameters.
   const TableReader gait(required_table(doc, "gait", path), schema_of("gait"), path, all);
   scene.gait_origin = gait.origin();
-  scene.gait = read_gait(robot, gait, scene.robot, path);
+  scene.gait = read_gait(robot, gait, scene.robot, path, all);
   check_with_factory(scene.gait, robot, gait);
 
   // [run] and the effects.
   read_run(TableReader(required_table(doc, "run", path), schema_of("run"), path, all), scene);
   const int legs = make_walker(scene.gait).legs();
-  read_friction(
-      TableReader(required_table(doc, "friction", path), schema_of("friction"), path, all), scene,
-      legs);
+  scene.friction = read_friction(
+      TableReader(required_table(doc, "friction", path), schema_of("friction"), path, all), legs);
   if (const toml::table* t = table_of(doc, "filter")) {
     const TableReader filter(*t, schema_of("filter"), path, all);
     FilterEffect effect;
@@ -449,68 +274,12 @@ Scene read_scene(const std::filesystem::path& path) {
 }
 
 nlohmann::json to_json(const Scene& scene) {
-  nlohmann::json gait = {{"kind", gait_kind(scene.gait)}};
-  std::visit(
-      [&](const auto& g) {
-        using G = std::decay_t<decltype(g)>;
-        gait["frequency"] = g.frequency;
-        if constexpr (std::is_same_v<G, robots::TripodGait>) {
-          gait["steer"] = g.steer;
-          gait["duty"] = g.duty;
-          gait["sweep"] = g.sweep;
-        } else if constexpr (std::is_same_v<G, robots::MetachronalGait>) {
-          gait["sweep"] = g.sweep;
-        } else if constexpr (std::is_same_v<G, robots::UndulationGait>) {
-          gait["legs"] = g.legs;
-          gait["dphi"] = g.dphi;
-          gait["roll_amplitude"] = g.roll_amplitude;
-          gait["yaw_amplitude"] = g.yaw_amplitude;
-          gait["stiffness"] = g.stiffness;
-        } else if constexpr (std::is_same_v<G, robots::TrotGait>) {
-          gait["duty"] = g.duty;
-          gait["stride"] = g.stride;
-          gait["swing_height"] = g.swing_height;
-        } else if constexpr (std::is_same_v<G, robots::DiskGait>) {
-          gait["legs"] = g.legs;
-          gait["radius"] = g.radius;
-        } else if constexpr (std::is_same_v<G, LegTableGait>) {
-          gait["stride"] = g.stride;
-          gait["height"] = g.height;
-          gait["lift"] = g.lift;
-          gait["mass"] = g.mass;
-          nlohmann::json legs = nlohmann::json::array();
-          for (const LegSpec& leg : g.legs) {
-            legs.push_back({{"name", leg.name},
-                            {"hip", {leg.hip(0), leg.hip(1), leg.hip(2)}},
-                            {"K", leg.K},
-                            {"mu", leg.mu},
-                            {"phase", leg.phase}});
-          }
-          gait["legs"] = legs;
-        }
-      },
-      scene.gait);
-  const bool coulomb = scene.friction.law == connection::FrictionLaw::kCoulomb;
-  nlohmann::json friction = {{"law", coulomb                      ? "coulomb"
-                                     : scene.friction.anisotropic ? "anisotropic"
-                                                                  : "viscous"}};
-  if (scene.friction.anisotropic) {
-    nlohmann::json w = nlohmann::json::array();
-    for (Eigen::Index k = 0; k < scene.friction.w.cols(); ++k) {
-      w.push_back({scene.friction.w(0, k), scene.friction.w(1, k)});
-    }
-    friction["w"] = w;
-  }
-  if (scene.friction.law == connection::FrictionLaw::kCoulomb) {
-    friction["tol"] = scene.friction.coulomb.tol;
-    friction["max_iterations"] = scene.friction.coulomb.max_iterations;
-  }
   nlohmann::json out = {
       {"file", scene.path},
       {"robot", scene.robot},
-      {"gait", gait},
+      {"gait", gait_json(scene.gait)},
       {"run", {{"duration", scene.duration}, {"dt", scene.dt}, {"steps", scene.steps}}},
-      {"friction", friction},
+      {"friction", friction_json(scene.friction)},
   };
   if (scene.filter) {
     out["filter"] = {{"gamma", scene.filter->gamma}};

@@ -1,8 +1,10 @@
 #pragma once
-// Scene files (DESIGN.md: "Only the effects a scene calls for"; issues 6 and 8): a TOML file says
-// which robot walks with which gait, for how long, and which effects the run simulates. read_scene
-// validates the whole file first (errors name file:line:col, nothing runs); compose() then builds
-// the simulator once from exactly the named effects.
+// Scene files (DESIGN.md: "Only the effects a scene calls for"): a TOML file says which robot
+// walks with which gait, for how long, and which effects the run simulates. read_scene validates
+// the whole file first (errors name file:line:col, nothing runs); compose() then builds the
+// simulator once from exactly the named effects. The gaits and the friction laws are read from
+// descriptor tables, one entry each (scene/gaits.cpp, scene/friction_laws.cpp): the robot names,
+// gait kinds, laws and their keys below are those entries'.
 //
 //   [robot]                  # required
 //   name = "bigant"          # "bigant" | "multipod" | "quadruped" | "disk" | "legs" (a leg
@@ -62,19 +64,13 @@
 #include <variant>
 
 #include "connection/trajectory.hpp"
-#include "robots/robots.hpp"
-#include "scene/leg_table.hpp"
+#include "scene/gaits.hpp"
 #include "terrain/terrain.hpp"
 
 namespace slipwalk::scene {
 
-/// The robot and its gait: one of the built-in walkers of robots/robots.hpp with its options.
-using Gait = std::variant<robots::TripodGait, robots::MetachronalGait, robots::UndulationGait,
-                          robots::TrotGait, robots::DiskGait, LegTableGait>;
-
-/// "tripod", "metachronal", "undulation", "trot", "disk", "foot_path".
-[[nodiscard]] const char* gait_kind(const Gait& gait);
-
+/// [friction]: which entry of the law table (scene/friction_laws.hpp) is the pair (law,
+/// anisotropic), and that law's parameters.
 struct FrictionEffect {
   connection::FrictionLaw law = connection::FrictionLaw::kViscousCoulomb;
   friction::CoulombOptions coulomb;  ///< used by the coulomb law only
@@ -101,7 +97,7 @@ struct NoiseEffect {
 
 struct Scene {
   std::string path;         ///< the file, as named to read_scene (messages, provenance)
-  std::string robot;        ///< "bigant" | "multipod" | "quadruped" | "disk"
+  std::string robot;        ///< [robot] name: the robot of the gait's table entry
   Gait gait;                ///< the gait's options (legs and radius of multipod/disk included)
   std::string gait_origin;  ///< file:line:col of [gait], for errors the robot factories raise
   double duration = 0.0;    ///< s
@@ -147,13 +143,11 @@ struct Simulator {
   connection::TrajectorySummary run(const connection::TrajectorySink& sink) const;
 };
 
-/// The built-in walker of a gait (robots/robots.hpp); throws the factory's core::InputError.
-[[nodiscard]] robots::Walker make_walker(const Gait& gait);
-
 /// The trajectory kernel of the scene's effects (one connection::Effects bundle).
 [[nodiscard]] Simulator::Kernel compose_kernel(const Scene& scene);
 
-/// "viscous" | "anisotropic" | "coulomb", then "+filter", "+residual", "+noise" as named.
+/// The friction law's name (its table entry's), then "+filter", "+residual", "+noise" and
+/// "+slope" | "+stairs" as named.
 [[nodiscard]] std::string kernel_name(const Scene& scene);
 
 /// Builds the walker (robots/robots.hpp) and picks the kernel. A robot factory's InputError is

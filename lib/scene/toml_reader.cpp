@@ -50,6 +50,15 @@ std::string_view nearest(std::string_view word, const std::vector<std::string_vi
   return best;
 }
 
+std::string owner_phrase(const std::vector<std::string_view>& names, std::string_view noun) {
+  std::string out = "the ";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    out.append(i == 0 ? "" : i + 1 == names.size() ? " and " : ", ").append(names[i]);
+  }
+  out.append(" ").append(noun);
+  return out.append(names.size() > 1 ? "s" : "");
+}
+
 std::string origin_of(const toml::source_region& region, const std::string& path) {
   const auto line = std::max<toml::source_index>(region.begin.line, 1);
   const auto column = std::max<toml::source_index>(region.begin.column, 1);

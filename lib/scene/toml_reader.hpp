@@ -2,8 +2,8 @@
 // Reading TOML tables against a schema, with errors that name file:line:col (DESIGN.md): an
 // unknown key (the nearest valid name suggested, or the table it belongs in), a wrong type, a
 // value out of range, a missing required field, a parameter of an effect that is not chosen.
-// Every error is a core::InputError; the scene reader (scene.cpp) is its first user, and issue 8's
-// effects (terrain, residual, noise) extend the schema, not this reader.
+// Every error is a core::InputError; the scene reader (scene.cpp) is its first user, and a new
+// table or effect extends the schema, not this reader.
 #include <toml++/toml.h>
 
 #include <initializer_list>
@@ -26,6 +26,11 @@ struct TableSchema {
 /// else empty.
 [[nodiscard]] std::string_view nearest(std::string_view word,
                                        const std::vector<std::string_view>& candidates);
+
+/// Who owns a key, for messages: "the tripod gait", "the tripod and trot gaits",
+/// "the a, b and c gaits" (`names` in order, `noun` singular).
+[[nodiscard]] std::string owner_phrase(const std::vector<std::string_view>& names,
+                                       std::string_view noun);
 
 /// `path:line:col` of a source region (toml++ counts from 1; an unknown region reads 1:1).
 [[nodiscard]] std::string origin_of(const toml::source_region& region, const std::string& path);

@@ -1,4 +1,4 @@
-// The built-in walkers of robots/robots.hpp (issue 6): every walker's foot velocities against
+// The built-in walkers of robots/robots.hpp: every walker's foot velocities against
 // central differences of its positions, sizes and phases, no allocation in the callables, option
 // validation, and each robot's own oracles (Multipod: the mean body frame's sums and the rigid leg
 // pairs; quadruped: stance lines, diagonal pairs and mirror symmetry; disk: rim geometry).

@@ -4,11 +4,13 @@
 // random mutations of a good scene parse or raise InputError.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "core/error.hpp"
+#include "scene/friction_laws.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 
@@ -338,6 +340,35 @@ Scene short_scene(const std::string& robot, const std::string& gait, const std::
     text.append("[filter]\ngamma = 0.2\n");
   }
   return parse_scene(text, "c.toml");
+}
+
+// The gait and law tables: every robot's gaits and every isotropic law read back under their own
+// names in the scene, its JSON and its kernel; every key of a table is listed once.
+TEST(SceneTables, NamesRoundTripThroughReaderJsonAndKernel) {
+  EXPECT_EQ(robot_names(),
+            (std::vector<std::string_view>{"bigant", "multipod", "quadruped", "disk", "legs"}));
+  const std::vector<std::pair<const char*, const char*>> gaits = {{"bigant", "tripod"},
+                                                                  {"bigant", "metachronal"},
+                                                                  {"multipod", "undulation"},
+                                                                  {"quadruped", "trot"},
+                                                                  {"disk", "disk"}};
+  for (const auto& [robot, gait] : gaits) {
+    for (const char* law : {"viscous", "coulomb"}) {
+      const Scene scene = short_scene(robot, gait, law, false);
+      EXPECT_STREQ(gait_kind(scene.gait), gait);
+      EXPECT_EQ(friction_law_of(scene.friction).name, law);
+      const nlohmann::json json = to_json(scene);
+      EXPECT_EQ(json["robot"], robot);
+      EXPECT_EQ(json["gait"]["kind"], gait);
+      EXPECT_EQ(json["friction"]["law"], law);
+      EXPECT_EQ(compose(scene).kernel_name, law);
+    }
+  }
+  for (const auto& keys : {robot_table_keys(), gait_table_keys(), friction_table_keys()}) {
+    for (std::string_view key : keys) {
+      EXPECT_EQ(std::count(keys.begin(), keys.end(), key), 1) << key;
+    }
+  }
 }
 
 TEST(SceneCompose, PicksTheKernelOnceAndRunsEveryFrame) {

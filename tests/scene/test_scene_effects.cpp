@@ -1,4 +1,4 @@
-// The issue-8 effects of a scene: anisotropic friction, the residual B of §5.3.1 and measurement
+// The optional effects of a scene: anisotropic friction, the residual B of §5.3.1 and measurement
 // noise. Oracles: every parser error names file:line:col (residual files file:line[:col]);
 // effects switched off or neutral (w = 0, B = 0, σ = 0) are bit-identical to the plain kernel;
 // the anisotropic forces are eq. 3.19's H u recomputed from the reported slip; the residual adds

@@ -1,4 +1,4 @@
-// The [terrain] table of a scene (issue 8, §5.2): every field, every error class at file:line:col
+// The [terrain] table of a scene (§5.2): every field, every error class at file:line:col
 // (unknown key with the nearest name, wrong type, out of range, missing field, a parameter of
 // another terrain kind), and compose() picking the terrain's kernel.
 #include <gtest/gtest.h>

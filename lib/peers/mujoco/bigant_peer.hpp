@@ -1,5 +1,5 @@
 #pragma once
-// BigANT in MuJoCo, driven along our gait (thesis §3.5.4, Fig. 3.14; issue 7). Built only with
+// BigANT in MuJoCo, driven along our gait (thesis §3.5.4, Fig. 3.14). Built only with
 // MuJoCo (target slipwalk_peer_mujoco); the robot description is bigant_spec.hpp.
 //
 // Model / data as in peer.hpp: a BigAntModel (compiled mjModel and the indices we need) is built

@@ -1,5 +1,5 @@
 #pragma once
-// MuJoCo as the peer simulator (thesis §3.5.3–3.5.4, issue 7). Built only with the CMake option
+// MuJoCo as the peer simulator (thesis §3.5.3–3.5.4). Built only with the CMake option
 // SLIPWALK_MUJOCO and Debian's libmujoco-dev (target slipwalk_peer_mujoco, which defines
 // SLIPWALK_HAVE_MUJOCO for its users).
 //
