@@ -1,5 +1,5 @@
 // legged_cost: what one frame of the multi-legged model costs, and how accurate each friction
-// solver is, on random frames of a hexapod or a disk robot (issue 4: cost of accuracy; issue 5:
+// solver is, on random frames of a hexapod or a disk robot (the cost of accuracy, and the
 // per-frame cost and its growth with the number of legs; thesis §3.6.1 for the thesis' timings).
 //
 // A point builds `frames` random frames (jittered feet, some lifted, random foot velocities) and
@@ -12,13 +12,11 @@
 //  * times the method: `repeats` times a loop over all frames (each repeat lasting ≥ 0.5 ms, the
 //    frames cycled as often as needed), reporting the median and quartiles over the repeats of
 //    the mean time per frame. All frames are built before the clock starts, so nothing in the
-//    timed loop allocates; timed loops of concurrent points take turns (a mutex), so two timings
-//    never share the cores of one sweep.
+//    timed loop allocates; the kind is timed, so the runner runs its points one at a time and two
+//    timings never share the cores of one sweep.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <ctime>
-#include <mutex>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -29,12 +27,12 @@
 #include "core/csv.hpp"
 #include "friction/solvers.hpp"
 #include "sweeps/engine/point_kind.hpp"
-#include "sweeps/points/families.hpp"
-#include "sweeps/points/legacy.hpp"
 #include "sweeps/engine/point_reader.hpp"
 #include "sweeps/engine/random.hpp"
+#include "sweeps/engine/timing.hpp"
+#include "sweeps/points/families.hpp"
 
-namespace slipwalk::sweeps {
+namespace slipwalk::sweeps::points {
 
 namespace {
 
@@ -190,31 +188,10 @@ struct Timing {
   double p75 = kNaN;
 };
 
-/// Linear interpolation between order statistics (numpy's default percentile); v sorted.
-double quantile(const std::vector<double>& v, double p) {
-  if (v.empty()) {
-    return kNaN;
-  }
-  const double x = p * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(x));
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (x - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
-/// The calling thread's CPU time: unlike wall time it does not count the time the thread waits
-/// for a core, which on a shared machine is most of the noise.
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 /// Mean CPU time per frame of the method over all frames, `repeats` times; the frames were solved
 /// once already (warm caches, and the outputs the errors are computed from).
 Timing time_method(const contact::Robot& robot, std::vector<contact::Frame>& frames,
                    const CostInputs& in) {
-  static std::mutex one_timing_at_a_time;
-  const std::lock_guard<std::mutex> lock(one_timing_at_a_time);
   const auto pass = [&] {
     for (contact::Frame& f : frames) {
       solve(robot, f, in);
@@ -239,7 +216,8 @@ Timing time_method(const contact::Robot& robot, std::vector<contact::Frame>& fra
     per_frame.push_back(1e9 * s / static_cast<double>(passes * in.frames));
   }
   std::sort(per_frame.begin(), per_frame.end());
-  return {quantile(per_frame, 0.5), quantile(per_frame, 0.25), quantile(per_frame, 0.75)};
+  return {quantile_of_sorted(per_frame, 0.5), quantile_of_sorted(per_frame, 0.25),
+          quantile_of_sorted(per_frame, 0.75)};
 }
 
 struct Errors {
@@ -299,44 +277,77 @@ Stats stats(std::vector<double> x) {
   if (x.empty()) {
     return {};
   }
-  return {quantile(x, 0.5), quantile(x, 0.95), x.back()};
+  return {quantile_of_sorted(x, 0.5), quantile_of_sorted(x, 0.95), x.back()};
 }
 
-const std::vector<std::string> kCostColumns = {"id",
-                                               "robot",
-                                               "N",
-                                               "method",
-                                               "eps",
-                                               "tol",
-                                               "frames",
-                                               "seed",
-                                               "repeats",
-                                               "contacts_mean",
-                                               "contacts_min",
-                                               "contacts_max",
-                                               "time_ns",
-                                               "time_ns_p25",
-                                               "time_ns_p75",
-                                               "err_v_median",
-                                               "err_v_p95",
-                                               "err_v_max",
-                                               "err_F_median",
-                                               "err_F_p95",
-                                               "err_F_max",
-                                               "error_frames",
-                                               "nonunique",
-                                               "ref_unconverged",
-                                               "ref_static_mean",
-                                               "iterations_mean",
-                                               "unconverged",
-                                               "message"};
+/// One row per point. Errors are NaN for the methods that compute no friction balance (support,
+/// connection, model); contacts_* count the feet down per frame; iterations_mean and unconverged
+/// are the method's own (friction.iterations and !friction.converged; spring support: its
+/// iterations). The time_ns* columns are the only ones that vary between runs.
+struct CostRow {
+  long long id = 0;
+  std::string robot;
+  long long N = 0;
+  std::string method;
+  double eps = kNaN;
+  double tol = kNaN;
+  long long frames = 0;
+  long long seed = 0;
+  long long repeats = 0;
+  double contacts_mean = 0.0;
+  long long contacts_min = 0;
+  long long contacts_max = 0;
+  double time_ns = kNaN;      ///< median over the repeats of the mean time per frame
+  double time_ns_p25 = kNaN;  ///< its quartiles
+  double time_ns_p75 = kNaN;
+  double err_v_median = kNaN;  ///< ‖(Δv_x, Δv_y, L Δω)‖ / V over the frames
+  double err_v_p95 = kNaN;
+  double err_v_max = kNaN;
+  double err_F_median = kNaN;  ///< max_k ‖ΔF_k‖ / (μ_k F_z,k) over the frames
+  double err_F_p95 = kNaN;
+  double err_F_max = kNaN;
+  long long error_frames = 0;  ///< frames in the error statistics
+  long long nonunique = 0;
+  long long ref_unconverged = 0;
+  double ref_static_mean = kNaN;  ///< static feet per frame in the reference
+  double iterations_mean = 0.0;
+  long long unconverged = 0;
+  std::string message;
 
-// One row per point. Errors are NaN for the methods that compute no friction balance (support,
-// connection, model); contacts_* count the feet down per frame; iterations_mean and unconverged
-// are the method's own (friction.iterations and !friction.converged; spring support: its
-// iterations). The time_* columns are the only ones that vary between runs (written as 0 with
-// --no-timing).
-PointResult run_cost(const Point& point) {
+  static std::vector<Column<CostRow>> columns() {
+    using R = CostRow;
+    return {value("id", &R::id),
+            value("robot", &R::robot),
+            value("N", &R::N),
+            value("method", &R::method),
+            value("eps", &R::eps, "m/s"),
+            value("tol", &R::tol),
+            value("frames", &R::frames),
+            value("seed", &R::seed),
+            value("repeats", &R::repeats),
+            value("contacts_mean", &R::contacts_mean),
+            value("contacts_min", &R::contacts_min),
+            value("contacts_max", &R::contacts_max),
+            timing("time_ns", &R::time_ns, "ns"),
+            timing("time_ns_p25", &R::time_ns_p25, "ns"),
+            timing("time_ns_p75", &R::time_ns_p75, "ns"),
+            value("err_v_median", &R::err_v_median),
+            value("err_v_p95", &R::err_v_p95),
+            value("err_v_max", &R::err_v_max),
+            value("err_F_median", &R::err_F_median),
+            value("err_F_p95", &R::err_F_p95),
+            value("err_F_max", &R::err_F_max),
+            value("error_frames", &R::error_frames),
+            value("nonunique", &R::nonunique),
+            value("ref_unconverged", &R::ref_unconverged),
+            value("ref_static_mean", &R::ref_static_mean),
+            value("iterations_mean", &R::iterations_mean),
+            value("unconverged", &R::unconverged),
+            value("message", &R::message)};
+  }
+};
+
+Rows<CostRow> run_cost(const Point& point) {
   const CostInputs in = read_cost(point);
   Eigen::Matrix3Xd nominal;
   const contact::Robot robot = make_robot(in, nominal);
@@ -391,46 +402,47 @@ PointResult run_cost(const Point& point) {
     message += std::to_string(errors.ref_unconverged);
     message += " reference solves not certified to 1e-14";
   }
-  PointResult out;
-  out.rows.push_back(Row{point.id,
-                         in.robot,
-                         static_cast<long long>(in.n),
-                         std::string(kMethodNames[static_cast<std::size_t>(in.method)]),
-                         in.eps,
-                         in.tol,
-                         in.frames,
-                         in.seed,
-                         in.repeats,
-                         static_cast<double>(contacts_sum) / nf,
-                         contacts_min,
-                         contacts_max,
-                         t.median,
-                         t.p25,
-                         t.p75,
-                         ev.median,
-                         ev.p95,
-                         ev.max,
-                         eF.median,
-                         eF.p95,
-                         eF.max,
-                         static_cast<long long>(errors.v.size()),
-                         errors.nonunique,
-                         errors.ref_unconverged,
-                         friction ? static_cast<double>(ref_static) / nf : kNaN,
-                         static_cast<double>(iterations) / nf,
-                         unconverged,
-                         message});
+  Rows<CostRow> out;
+  out.rows.push_back({point.id,
+                      in.robot,
+                      static_cast<long long>(in.n),
+                      std::string(kMethodNames[static_cast<std::size_t>(in.method)]),
+                      in.eps,
+                      in.tol,
+                      in.frames,
+                      in.seed,
+                      in.repeats,
+                      static_cast<double>(contacts_sum) / nf,
+                      contacts_min,
+                      contacts_max,
+                      t.median,
+                      t.p25,
+                      t.p75,
+                      ev.median,
+                      ev.p95,
+                      ev.max,
+                      eF.median,
+                      eF.p95,
+                      eF.max,
+                      static_cast<long long>(errors.v.size()),
+                      errors.nonunique,
+                      errors.ref_unconverged,
+                      friction ? static_cast<double>(ref_static) / nf : kNaN,
+                      static_cast<double>(iterations) / nf,
+                      unconverged,
+                      message});
   return out;
 }
 
 }  // namespace
 
-std::vector<PointKind> points::legged_cost_kinds() {
-  return legacy_kinds({{"legged_cost",
-          "§3.6.1, issues 4 and 5: time per frame and error against a 1e-14 Coulomb reference of "
-          "a friction solver (or the support search, the connection, the whole model) on random "
-          "frames of a hexapod or a disk robot (one row per point)",
-          kCostColumns, [](const Point& p) { (void)read_cost(p); }, run_cost}});
+std::vector<PointKind> legged_cost_kinds() {
+  return {make_point_kind<CostRow>(
+      "legged_cost",
+      "§3.6.1: time per frame and error against a 1e-14 Coulomb reference of a friction solver "
+      "(or the support search, the connection, the whole model) on random frames of a hexapod or "
+      "a disk robot (one row per point)",
+      Timed::kYes, [](const Point& p) { (void)read_cost(p); }, run_cost)};
 }
 
-}  // namespace slipwalk::sweeps
+}  // namespace slipwalk::sweeps::points

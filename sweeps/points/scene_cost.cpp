@@ -1,46 +1,62 @@
-// scene_cost: what each effect of a scene costs per step (issue 8: "unused effects cost
-// nothing"). One point times, in one run and interleaved, the hand-written flat isotropic
-// viscous kernel (scene/reference_kernel.hpp) and composed simulators of BigANT's tripod with
-// exactly one effect each: none (flat isotropic viscous), anisotropic friction, Coulomb friction,
-// the inertia filter, the residual B, measurement noise, a slope, stairs. Each repeat runs every
-// case once (CPU time of the calling thread, the runs' buffers included, as in `slipwalk run`),
-// so a slow moment of a shared machine hits every case alike; ratios are taken per repeat and
-// their median reported. Timed points take turns (a mutex), whatever --jobs says.
+// scene_cost: what each effect of a scene costs per step (unused effects must cost nothing,
+// DESIGN.md: "Only the effects a scene calls for"). One point times, in one run and interleaved,
+// the hand-written flat isotropic viscous kernel (scene/reference_kernel.hpp) and composed
+// simulators of BigANT's tripod with exactly one effect each: none (flat isotropic viscous),
+// anisotropic friction, Coulomb friction, the inertia filter, the residual B, measurement noise,
+// a slope, stairs. Each repeat runs every case once (CPU time of the calling thread, the runs'
+// buffers included, as in `slipwalk run`), so a slow moment of a shared machine hits every case
+// alike; ratios are taken per repeat and their median reported. The kind is timed: the runner
+// runs its points one at a time, whatever --jobs says.
 //
 // Rows, one per case: the median and quartiles of the time per step, the median ratio to the
 // hand-written kernel, and the median extra time per step over the composed flat viscous scene
 // with its share of that scene's time.
 #include <Eigen/Core>
-#include <algorithm>
-#include <ctime>
-#include <mutex>
 #include <string>
 #include <vector>
 
 #include "scene/reference_kernel.hpp"
 #include "scene/scene.hpp"
 #include "sweeps/engine/point_kind.hpp"
-#include "sweeps/points/families.hpp"
-#include "sweeps/points/legacy.hpp"
 #include "sweeps/engine/point_reader.hpp"
+#include "sweeps/engine/timing.hpp"
+#include "sweeps/points/families.hpp"
 
-namespace slipwalk::sweeps {
+namespace slipwalk::sweeps::points {
 
 namespace {
 
 const std::vector<std::string_view> kKeys = {"steps", "repeats", "frequency"};
 
-const std::vector<std::string> kColumns = {"id",
-                                           "case",
-                                           "kernel",
-                                           "steps",
-                                           "repeats",
-                                           "ns_per_step",
-                                           "ns_per_step_p25",
-                                           "ns_per_step_p75",
-                                           "ratio_to_handwritten",
-                                           "extra_ns_per_step",
-                                           "share_of_flat"};
+/// One row per case. Every number is a measured time or computed from measured times.
+struct CaseRow {
+  long long id = 0;
+  std::string effect;  ///< the case: the effect it adds
+  std::string kernel;  ///< the kernel the composed simulator runs
+  long long steps = 0;
+  long long repeats = 0;
+  double ns_per_step = 0.0;  ///< median over the repeats
+  double ns_per_step_p25 = 0.0;
+  double ns_per_step_p75 = 0.0;
+  double ratio_to_handwritten = 0.0;  ///< median over the repeats of the ratio of the times
+  double extra_ns_per_step = 0.0;     ///< median over the repeats, over the composed flat scene
+  double share_of_flat = 0.0;         ///< extra_ns_per_step / the flat scene's ns_per_step
+
+  static std::vector<Column<CaseRow>> columns() {
+    using R = CaseRow;
+    return {value("id", &R::id),
+            value("case", &R::effect),
+            value("kernel", &R::kernel),
+            value("steps", &R::steps),
+            value("repeats", &R::repeats),
+            timing("ns_per_step", &R::ns_per_step, "ns"),
+            timing("ns_per_step_p25", &R::ns_per_step_p25, "ns"),
+            timing("ns_per_step_p75", &R::ns_per_step_p75, "ns"),
+            timing("ratio_to_handwritten", &R::ratio_to_handwritten, ""),
+            timing("extra_ns_per_step", &R::extra_ns_per_step, "ns"),
+            timing("share_of_flat", &R::share_of_flat, "")};
+  }
+};
 
 struct Case {
   std::string name;       ///< the effect it adds ("handwritten", "none", "anisotropic", ...)
@@ -99,27 +115,7 @@ scene::Scene scene_of(const Case& c, const Inputs& in) {
   return s;
 }
 
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  const double at = q * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<std::size_t>(at);
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
-PointResult run_point(const Point& point) {
+Rows<CaseRow> run_point(const Point& point) {
   const Inputs in = read_inputs(point);
   std::vector<scene::Scene> scenes;
   std::vector<scene::Simulator> sims;
@@ -134,8 +130,6 @@ PointResult run_point(const Point& point) {
   };
   const std::size_t n = cases().size();
   std::vector<std::vector<double>> ns(n);
-  static std::mutex one_timing_at_a_time;
-  const std::lock_guard<std::mutex> lock(one_timing_at_a_time);
   const double per_run = static_cast<double>(in.steps + 1);
   for (long long r = -1; r < in.repeats; ++r) {  // r = −1 warms up
     for (std::size_t i = 0; i < n; ++i) {
@@ -152,7 +146,7 @@ PointResult run_point(const Point& point) {
       }
     }
   }
-  PointResult out;
+  Rows<CaseRow> out;
   for (std::size_t i = 0; i < n; ++i) {
     std::vector<double> ratio;
     std::vector<double> extra;
@@ -161,10 +155,10 @@ PointResult run_point(const Point& point) {
       extra.push_back(ns[i][r] - ns[1][r]);
     }
     const double extra_ns = median(extra);
-    out.rows.push_back(Row{point.id, cases()[i].name,
-                           i == 0 ? std::string("handwritten") : sims[i].kernel_name, in.steps,
-                           in.repeats, median(ns[i]), quantile(ns[i], 0.25), quantile(ns[i], 0.75),
-                           median(ratio), extra_ns, extra_ns / median(ns[1])});
+    out.rows.push_back({point.id, cases()[i].name,
+                        i == 0 ? std::string("handwritten") : sims[i].kernel_name, in.steps,
+                        in.repeats, median(ns[i]), quantile(ns[i], 0.25), quantile(ns[i], 0.75),
+                        median(ratio), extra_ns, extra_ns / median(ns[1])});
   }
   if (!(observed == observed)) {  // a NaN in the outputs: say so rather than time garbage
     out.failed = true;
@@ -175,11 +169,12 @@ PointResult run_point(const Point& point) {
 
 }  // namespace
 
-std::vector<PointKind> points::scene_cost_kinds() {
-  return legacy_kinds({{"scene_cost",
-          "issue 8: time per step of BigANT's tripod through the hand-written flat isotropic "
-          "viscous kernel and composed scenes with one effect each (one row per case)",
-          kColumns, [](const Point& p) { (void)read_inputs(p); }, run_point}});
+std::vector<PointKind> scene_cost_kinds() {
+  return {make_point_kind<CaseRow>(
+      "scene_cost",
+      "time per step of BigANT's tripod through the hand-written flat isotropic viscous kernel "
+      "and composed scenes with one effect each (one row per case)",
+      Timed::kYes, [](const Point& p) { (void)read_inputs(p); }, run_point)};
 }
 
-}  // namespace slipwalk::sweeps
+}  // namespace slipwalk::sweeps::points

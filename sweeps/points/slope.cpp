@@ -1,6 +1,6 @@
-// slope_progress and stall_slope (thesis §5.2.1, issue 8: "find the slope at which the tripod gait
-// stops making progress"): BigANT's alternating tripod walking straight up a slope (uphill = its
-// heading), composed from a scene exactly as `slipwalk run` would (scene::compose).
+// slope_progress and stall_slope (thesis §5.2.1: the slope at which the tripod gait stops making
+// progress): BigANT's alternating tripod walking straight up a slope (uphill = its heading),
+// composed from a scene exactly as `slipwalk run` would (scene::compose).
 //
 // Progress per gait cycle: the uphill displacement over cycles 2 … n divided by n − 1 (the first
 // cycle starts from the gait's initial pose and is left out). A frame whose Coulomb balance does
@@ -19,13 +19,14 @@
 #include "core/csv.hpp"
 #include "scene/scene.hpp"
 #include "sweeps/engine/point_kind.hpp"
-#include "sweeps/points/families.hpp"
-#include "sweeps/points/legacy.hpp"
 #include "sweeps/engine/point_reader.hpp"
+#include "sweeps/points/families.hpp"
 
-namespace slipwalk::sweeps {
+namespace slipwalk::sweeps::points {
 
 namespace {
+
+// --- one walk up a slope ------------------------------------------------------------------------
 
 struct Walk {
   std::string law = "viscous";
@@ -42,7 +43,7 @@ struct Probe {
   long long unsupported = 0;
 };
 
-Walk read_walk(const Reader& r, std::string_view /*kind*/) {
+Walk read_walk(const Reader& r) {
   Walk w;
   w.law = r.choice("law", {"viscous", "coulomb"});
   w.frequency = r.number("frequency", w.frequency, 0.0, 100.0);
@@ -87,29 +88,116 @@ double signed_progress(const Probe& p) {
   return p.sliding > 0 ? -std::numeric_limits<double>::infinity() : p.progress;
 }
 
+// --- slope_progress -----------------------------------------------------------------------------
+
 const std::vector<std::string_view> kProgressKeys = {"law",    "angle_deg",       "frequency",
                                                      "cycles", "steps_per_cycle", "com_height"};
-const std::vector<std::string_view> kStallKeys = {
-    "law", "lo_deg", "hi_deg", "tol_deg", "frequency", "cycles", "steps_per_cycle", "com_height"};
 
-PointResult run_progress(const Point& point) {
+struct ProgressInputs {
+  Walk walk;
+  double angle_deg = 0.0;
+};
+
+ProgressInputs read_progress(const Point& point) {
   const Reader r(point, "slope_progress", kProgressKeys);
-  const Walk w = read_walk(r, "slope_progress");
-  const double angle = r.number("angle_deg", 0.0, 0.0, 89.0, true);
-  const Probe p = walk_up(w, angle);
-  PointResult out;
+  ProgressInputs in;
+  in.walk = read_walk(r);
+  in.angle_deg = r.number("angle_deg", 0.0, 0.0, 89.0, true);
+  return in;
+}
+
+/// One row per point: the walk's uphill progress and its troubled frames.
+struct ProgressRow {
+  long long id = 0;
+  std::string law;
+  double angle_deg = 0.0;
+  double progress_per_cycle = 0.0;
+  long long sliding_frames = 0;
+  long long not_converged_frames = 0;
+  long long unsupported_frames = 0;
+
+  static std::vector<Column<ProgressRow>> columns() {
+    using R = ProgressRow;
+    return {value("id", &R::id),
+            value("law", &R::law),
+            value("angle_deg", &R::angle_deg, "deg"),
+            value("progress_per_cycle", &R::progress_per_cycle, "m"),
+            value("sliding_frames", &R::sliding_frames),
+            value("not_converged_frames", &R::not_converged_frames),
+            value("unsupported_frames", &R::unsupported_frames)};
+  }
+};
+
+Rows<ProgressRow> run_progress(const Point& point) {
+  const ProgressInputs in = read_progress(point);
+  const Probe p = walk_up(in.walk, in.angle_deg);
+  Rows<ProgressRow> out;
   out.rows.push_back(
-      Row{point.id, w.law, angle, p.progress, p.sliding, p.not_converged, p.unsupported});
+      {point.id, in.walk.law, in.angle_deg, p.progress, p.sliding, p.not_converged, p.unsupported});
   return out;
 }
 
-PointResult run_stall(const Point& point) {
+// --- stall_slope --------------------------------------------------------------------------------
+
+const std::vector<std::string_view> kStallKeys = {
+    "law", "lo_deg", "hi_deg", "tol_deg", "frequency", "cycles", "steps_per_cycle", "com_height"};
+
+struct StallInputs {
+  Walk walk;
+  double lo_deg = 0.0;   ///< the bracket's bottom: progress expected
+  double hi_deg = 60.0;  ///< the bracket's top: no progress expected
+  double tol_deg = 0.05;
+};
+
+StallInputs read_stall(const Point& point) {
   const Reader r(point, "stall_slope", kStallKeys);
-  const Walk w = read_walk(r, "stall_slope");
-  double lo = r.number("lo_deg", 0.0, 0.0, 89.0, true);
-  double hi = r.number("hi_deg", 60.0, 0.0, 89.0, true);
-  const double tol = r.number("tol_deg", 0.05, 0.0, 45.0);
-  PointResult out;
+  StallInputs in;
+  in.walk = read_walk(r);
+  in.lo_deg = r.number("lo_deg", in.lo_deg, 0.0, 89.0, true);
+  in.hi_deg = r.number("hi_deg", in.hi_deg, 0.0, 89.0, true);
+  in.tol_deg = r.number("tol_deg", in.tol_deg, 0.0, 45.0);
+  if (!(in.lo_deg < in.hi_deg)) {
+    r.fail("hi_deg", "must be above lo_deg");
+  }
+  return in;
+}
+
+/// One row per probe of the bisection, each with the final bracket and its midpoint.
+struct StallRow {
+  long long id = 0;
+  std::string law;
+  long long step = 0;
+  double angle_deg = 0.0;
+  double progress_per_cycle = 0.0;
+  long long sliding_frames = 0;
+  long long not_converged_frames = 0;
+  long long unsupported_frames = 0;
+  double bracket_lo_deg = 0.0;
+  double bracket_hi_deg = 0.0;
+  double stall_deg = 0.0;
+
+  static std::vector<Column<StallRow>> columns() {
+    using R = StallRow;
+    return {value("id", &R::id),
+            value("law", &R::law),
+            value("step", &R::step),
+            value("angle_deg", &R::angle_deg, "deg"),
+            value("progress_per_cycle", &R::progress_per_cycle, "m"),
+            value("sliding_frames", &R::sliding_frames),
+            value("not_converged_frames", &R::not_converged_frames),
+            value("unsupported_frames", &R::unsupported_frames),
+            value("bracket_lo_deg", &R::bracket_lo_deg, "deg"),
+            value("bracket_hi_deg", &R::bracket_hi_deg, "deg"),
+            value("stall_deg", &R::stall_deg, "deg")};
+  }
+};
+
+Rows<StallRow> run_stall(const Point& point) {
+  const StallInputs in = read_stall(point);
+  const Walk& w = in.walk;
+  double lo = in.lo_deg;
+  double hi = in.hi_deg;
+  Rows<StallRow> out;
   struct Done {
     double angle;
     Probe p;
@@ -123,7 +211,7 @@ PointResult run_stall(const Point& point) {
     out.failed = true;
     out.message = "the bracket [lo_deg, hi_deg] does not change the sign of the progress";
   } else {
-    while (hi - lo > tol) {
+    while (hi - lo > in.tol_deg) {
       const double mid = 0.5 * (lo + hi);
       const Probe pm = walk_up(w, mid);
       probes.push_back({mid, pm});
@@ -133,44 +221,25 @@ PointResult run_stall(const Point& point) {
   const double stall = 0.5 * (lo + hi);
   long long step = 0;
   for (const Done& d : probes) {
-    out.rows.push_back(Row{point.id, w.law, step++, d.angle, d.p.progress, d.p.sliding,
-                           d.p.not_converged, d.p.unsupported, lo, hi, stall});
+    out.rows.push_back({point.id, w.law, step++, d.angle, d.p.progress, d.p.sliding,
+                        d.p.not_converged, d.p.unsupported, lo, hi, stall});
   }
   return out;
 }
 
 }  // namespace
 
-std::vector<PointKind> points::slope_kinds() {
-  return legacy_kinds({
-      {"slope_progress",
-       "§5.2.1: BigANT's tripod straight up a slope, uphill progress per gait cycle (one row)",
-       {"id", "law", "angle_deg", "progress_per_cycle", "sliding_frames", "not_converged_frames",
-        "unsupported_frames"},
-       [](const Point& p) {
-         const Reader r(p, "slope_progress", kProgressKeys);
-         (void)read_walk(r, "slope_progress");
-         (void)r.number("angle_deg", 0.0, 0.0, 89.0, true);
-       },
-       run_progress},
-      {"stall_slope",
-       "§5.2.1: the slope at which BigANT's tripod stops making uphill progress, by bisection "
-       "(one row per probe)",
-       {"id", "law", "step", "angle_deg", "progress_per_cycle", "sliding_frames",
-        "not_converged_frames", "unsupported_frames", "bracket_lo_deg", "bracket_hi_deg",
-        "stall_deg"},
-       [](const Point& p) {
-         const Reader r(p, "stall_slope", kStallKeys);
-         (void)read_walk(r, "stall_slope");
-         const double lo = r.number("lo_deg", 0.0, 0.0, 89.0, true);
-         const double hi = r.number("hi_deg", 60.0, 0.0, 89.0, true);
-         (void)r.number("tol_deg", 0.05, 0.0, 45.0);
-         if (!(lo < hi)) {
-           r.fail("hi_deg", "must be above lo_deg");
-         }
-       },
-       run_stall},
-  });
+std::vector<PointKind> slope_kinds() {
+  return {make_point_kind<ProgressRow>(
+              "slope_progress",
+              "§5.2.1: BigANT's tripod straight up a slope, uphill progress per gait cycle (one "
+              "row)",
+              Timed::kNo, [](const Point& p) { (void)read_progress(p); }, run_progress),
+          make_point_kind<StallRow>(
+              "stall_slope",
+              "§5.2.1: the slope at which BigANT's tripod stops making uphill progress, by "
+              "bisection (one row per probe)",
+              Timed::kNo, [](const Point& p) { (void)read_stall(p); }, run_stall)};
 }
 
-}  // namespace slipwalk::sweeps
+}  // namespace slipwalk::sweeps::points

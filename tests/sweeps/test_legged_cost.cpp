@@ -1,9 +1,9 @@
-// The timed cost-and-accuracy point (sweeps/legged_cost_points.cpp): check() rejects bad keys
+// The timed cost-and-accuracy point (sweeps/points/legged_cost.cpp): check() rejects bad keys
 // naming them; on small cases (a hexapod and a 12-leg disk, a few random frames) each friction
 // solver's error against the tight Coulomb reference shrinks as its knob tightens — the Coulomb
 // solver's certificate target tol and the ε of eq. 3.14 — monotone within a factor, and the rows
-// other than the timings are deterministic. No timing is asserted (the timing columns are only
-// read for being present).
+// other than the timings are deterministic. No speed is asserted: of the timings only that they
+// are positive and that their quartiles bracket their median.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,8 +13,8 @@
 
 #include "core/error.hpp"
 #include "sweeps/engine/point_kind.hpp"
-#include "sweeps/points/families.hpp"
 #include "sweeps/engine/spec.hpp"
+#include "sweeps/points/families.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -131,7 +131,7 @@ TEST(LeggedCost, EpsilonErrorShrinksAsEpsilonFallsAndViscousIsTheLimit) {
     const std::string common = "frames = 6\nrepeats = 1\nseed = 3\n" + robot;
     const std::vector<Cells> viscous = run("[params]\nmethod = \"viscous\"\n" + common);
     const std::vector<Cells> rows = run("[params]\nmethod = \"epsilon\"\n" + common +
-                                      "[axes]\neps = { logspace = [1e1, 1e-6], n = 8 }\n");
+                                        "[axes]\neps = { logspace = [1e1, 1e-6], n = 8 }\n");
     ASSERT_EQ(rows.size(), 8u);
     const double visc = num(viscous[0], "err_v_median");
     SCOPED_TRACE(robot);
@@ -155,6 +155,7 @@ TEST(LeggedCost, EpsilonErrorShrinksAsEpsilonFallsAndViscousIsTheLimit) {
 }
 
 TEST(LeggedCost, RowsAreDeterministicApartFromTimings) {
+  EXPECT_EQ(fn().timed, Timed::kYes);  // the runner runs its points one at a time
   const std::string body =
       "[params]\nrobot = \"disk\"\nN = 12\nframes = 5\nrepeats = 2\n"
       "[axes]\nmethod = [\"viscous\", \"support\", \"model\"]\n";
@@ -173,6 +174,9 @@ TEST(LeggedCost, RowsAreDeterministicApartFromTimings) {
     }
     // The frames are the model's own: at least three feet down, some lifted.
     EXPECT_GE(num(a[i], "contacts_min"), 3.0);
+    EXPECT_GT(num(a[i], "time_ns"), 0.0);
+    EXPECT_LE(num(a[i], "time_ns_p25"), num(a[i], "time_ns"));
+    EXPECT_LE(num(a[i], "time_ns"), num(a[i], "time_ns_p75"));
   }
   EXPECT_TRUE(std::isnan(num(a[1], "err_v_max")));  // support: no friction balance
 }
