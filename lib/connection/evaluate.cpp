@@ -1,27 +1,21 @@
 // One frame of the multi-legged model (Alg. 1): spring support, local connection, friction law.
 // Kept apart from local_connection.cpp so that code using only the connection does not link the
 // spring-support search.
-#include "connection/connection_columns.hpp"
 #include "connection/local_connection.hpp"
 
 namespace slipwalk::connection {
 
 void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law) {
-  namespace d = friction::detail;
   // 1. Which feet touch and what they carry (§3.3).
   contact::spring_support(robot, frame);
   // 2. The viscous system M x = −b of eq. 3.20, assembled and factorized once: it gives the local
   //    connection A whatever the law, and the viscous-Coulomb velocity.
-  Eigen::Matrix3d M;
-  Eigen::Vector3d b;
-  const d::Contacts cs = d::viscous_balance(robot, frame, M, b);  // c_k in work_n
-  d::Psd3 solver;
-  solver.factorize(M);
-  detail::connection_columns(robot, frame, solver, cs);
+  const friction::ViscousSystem system(robot, frame);
+  local_connection(robot, frame, system);
   // 3. The friction law's balance: body velocity, foot forces, summary (§3.4).
   switch (law) {
     case FrictionLaw::kViscousCoulomb:
-      d::finish_viscous_coulomb(robot, frame, solver, cs, b);
+      friction::solve_viscous_coulomb(robot, frame, system);
       break;
     case FrictionLaw::kCoulomb:
       friction::solve_coulomb(robot, frame);

@@ -1,25 +1,23 @@
 // The local connection (eq. 3.20, with the signs and the moment row of friction/balance.hpp):
 // A_k = −c_k M⁻¹ J_kᵀ G_k, least norm (M⁺) when the contacts are one point. Two passes over the
-// feet: the system (friction::detail::viscous_balance) and the columns of A.
+// feet: the system (friction::ViscousSystem) and the columns of A.
 #include "connection/local_connection.hpp"
-
-#include "connection/connection_columns.hpp"
-#include "friction/balance.hpp"
 
 namespace slipwalk::connection {
 
 namespace {
 
-// A_k = −c_k P J_kᵀ G_k for every foot (P = D M̃⁺ D). The isotropic instantiation (G = I, the
-// usual robot) has no anisotropy terms: 6 multiply-adds per foot.
+// A_k = −c_k P J_kᵀ G_k for every foot (P = M⁺). The isotropic instantiation (G = I, the usual
+// robot) has no anisotropy terms: 6 multiply-adds per foot.
 template <bool kAniso>
-void columns(const contact::Robot& robot, contact::Frame& frame, const Eigen::Matrix3d& P) {
+void columns(const contact::Robot& robot, contact::Frame& frame, const Eigen::Matrix3d& P,
+             const double* weights) {
   const double p00 = P(0, 0), p01 = P(0, 1), p02 = P(0, 2);
   const double p10 = P(1, 0), p11 = P(1, 1), p12 = P(1, 2);
   const double p20 = P(2, 0), p21 = P(2, 1), p22 = P(2, 2);
   double* a = frame.A.data();  // column-major 3 × 2N: foot k's six entries are contiguous
   for (int k = 0; k < frame.legs(); ++k) {
-    const double c = frame.work_n(k);  // zero columns for a foot without friction (c = 0)
+    const double c = weights[k];  // zero columns for a foot without friction (c = 0)
     const double qx = frame.q(0, k);
     const double qy = frame.q(1, k);
     // c G = c (I + w wᵀ), and the third row of J_kᵀ G_k, (S q)ᵀ G.
@@ -47,29 +45,19 @@ void columns(const contact::Robot& robot, contact::Frame& frame, const Eigen::Ma
 
 }  // namespace
 
-void detail::connection_columns(const contact::Robot& robot, contact::Frame& frame,
-                                const friction::detail::Psd3& solver,
-                                const friction::detail::Contacts& cs) {
-  // Scaled coordinates: x = D y, so A_k = −D M̃⁺ (c_k J̃_kᵀ G_k), D = diag(1, 1, 1/L); with the
-  // unscaled lever S q_k in J_k = [I | S q_k] this is −c_k (D M̃⁺ D) J_kᵀ G_k.
-  Eigen::Matrix3d P = solver.inverse();
-  P.row(2) *= cs.inv_L;
-  P.col(2) *= cs.inv_L;
-  if (cs.anisotropic) {
-    columns<true>(robot, frame, P);
+void local_connection(const contact::Robot& robot, contact::Frame& frame,
+                      const friction::ViscousSystem& system) {
+  // With the unscaled lever S q_k in J_k = [I | S q_k], A_k = −c_k M⁺ J_kᵀ G_k.
+  const Eigen::Matrix3d P = system.inverse();
+  if (system.anisotropic()) {
+    columns<true>(robot, frame, P, system.weights());
   } else {
-    columns<false>(robot, frame, P);
+    columns<false>(robot, frame, P, system.weights());
   }
 }
 
 void local_connection(const contact::Robot& robot, contact::Frame& frame) {
-  namespace d = friction::detail;
-  Eigen::Matrix3d M;
-  Eigen::Vector3d b;
-  const d::Contacts cs = d::viscous_balance(robot, frame, M, b);  // c_k in work_n
-  d::Psd3 solver;
-  solver.factorize(M);
-  detail::connection_columns(robot, frame, solver, cs);
+  local_connection(robot, frame, friction::ViscousSystem(robot, frame));
 }
 
 }  // namespace slipwalk::connection

@@ -5,11 +5,17 @@
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
 #include "friction/solvers.hpp"
+#include "friction/viscous_system.hpp"
 
 namespace slipwalk::connection {
 
 /// Fills frame.A from frame.q, frame.contact, frame.Fz (needs contact::spring_support first).
 void local_connection(const contact::Robot& robot, contact::Frame& frame);
+
+/// Fills frame.A from the frame's already built viscous system (friction/viscous_system.hpp), for
+/// a caller that solves the viscous-Coulomb balance from the same system (evaluate).
+void local_connection(const contact::Robot& robot, contact::Frame& frame,
+                      const friction::ViscousSystem& system);
 
 enum class FrictionLaw { kViscousCoulomb, kCoulomb };
 

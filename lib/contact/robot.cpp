@@ -63,8 +63,24 @@ Frame::Frame(const Robot& robot)
       work_n(Eigen::VectorXd::Zero(robot.legs())),
       work_2n(Eigen::Matrix2Xd::Zero(2, robot.legs())),
       work_idx(static_cast<std::size_t>(robot.legs()), 0),
-      work_rows(Eigen::Matrix<double, 13, Eigen::Dynamic, Eigen::RowMajor>::Zero(
-          13, (robot.legs() + 1) / 2 * 2)) {}
+      support_newton(robot.legs()),
+      coulomb(robot.legs()) {}
+
+SupportNewtonScratch::SupportNewtonScratch(int legs)
+    : qy(FootRow::Zero(padded_feet(legs))),
+      minus_qx(FootRow::Zero(padded_feet(legs))),
+      qz(FootRow::Zero(padded_feet(legs))),
+      K(FootRow::Zero(padded_feet(legs))),
+      on(FootRow::Zero(padded_feet(legs))) {}
+
+CoulombScratch::CoulombScratch(int legs)
+    : B(FootRows<6>::Zero(6, padded_feet(legs))),
+      d(FootRows<2>::Zero(2, padded_feet(legs))),
+      active(FootRow::Zero(padded_feet(legs))),
+      sliding(FootRow::Zero(padded_feet(legs))),
+      r2(FootRow::Zero(padded_feet(legs))),
+      weight(FootRow::Zero(padded_feet(legs))),
+      inv_weight2(FootRow::Zero(padded_feet(legs))) {}
 
 void check_frame(const Robot& robot, const Frame& frame) {
   const int n = robot.legs();

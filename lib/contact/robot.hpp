@@ -82,6 +82,55 @@ struct FrictionSummary {
   std::string message;       ///< empty unless something noteworthy happened
 };
 
+/// Per-foot quantities as rows: one column per foot, padded with a zero column to an even count N̄
+/// of feet, so that a pass over the feet handles two feet per SIMD register (a struct of arrays).
+using FootRow = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor>;
+template <int kRows>
+using FootRows = Eigen::Matrix<double, kRows, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// N rounded up to even: the column count of FootRow and FootRows.
+[[nodiscard]] constexpr int padded_feet(int legs) { return (legs + 1) / 2 * 2; }
+
+/// Scratch of the spring-support Newton route (contact/support_newton.cpp, §3.3): the feet's
+/// coordinates in the plane of (α, β, z) and their contact flags, each (1 x N̄). The padding
+/// foot sits far above the ground with K = 0.
+struct SupportNewtonScratch {
+  explicit SupportNewtonScratch(int legs);
+  FootRow qy;        ///< q_y,j, m: the coefficient of α in the height h_j (eq. 3.6)
+  FootRow minus_qx;  ///< −q_x,j, m: the coefficient of β in h_j
+  FootRow qz;        ///< q_z,j, m
+  FootRow K;         ///< K_j, N/m
+  FootRow on;        ///< 1.0 where foot j was in contact (h_j < 0) at the last pass, else 0.0
+
+  /// Whether every row has the same even count of columns, at least `legs`.
+  [[nodiscard]] bool holds(int legs) const {
+    const Eigen::Index n = qy.cols();
+    return n >= legs && n % 2 == 0 && minus_qx.cols() == n && qz.cols() == n && K.cols() == n &&
+           on.cols() == n;
+  }
+};
+
+/// Scratch of the Coulomb solver (friction::solve_coulomb, friction/coulomb_solver.hpp): the
+/// per-foot constants of the dissipation D(y) = Σ_k ‖B_k y + d_k‖ in the scaled coordinates
+/// y = (v_x, v_y, L ω) of friction/balance.hpp, and the solver's per-foot state. Each member is
+/// (rows x N̄); a foot without friction and the padding foot have zero columns.
+struct CoulombScratch {
+  explicit CoulombScratch(int legs);
+  FootRows<6> B;        ///< B_k = c_k W_k J̃_k (2 x 3), N, column-major down the rows:
+                        ///< B₀₀ B₁₀ B₀₁ B₁₁ B₀₂ B₁₂
+  FootRows<2> d;        ///< d_k = c_k W_k q̇_k, N m/s
+  FootRow active;       ///< 1.0 for a foot with friction (c_k > 0), else 0.0: the feet a full
+                        ///< pass visits
+  FootRow sliding;      ///< 1.0 for a foot the current active set lets slide, else 0.0: the feet
+                        ///< a polish pass visits
+  FootRow r2;           ///< ‖r_k‖² = ‖B_k y + d_k‖² at the last pass's y, (N m/s)²
+  FootRow weight;       ///< c_k = μ_k F_z,k, N
+  FootRow inv_weight2;  ///< 1 / c_k², N⁻²
+
+  /// Whether the members have the column count of a frame with `legs` feet.
+  [[nodiscard]] bool fits(int legs) const { return B.cols() == padded_feet(legs); }
+};
+
 /// One evaluation of the model: inputs, outputs ("computed by ..."), scratch.
 struct Frame {
   explicit Frame(const Robot& robot);
@@ -106,12 +155,11 @@ struct Frame {
   FrictionSummary friction;
 
   // ---- scratch (sized once here; algorithms may use it freely) ------------------------------
-  Eigen::VectorXd work_n;     ///< (N)
-  Eigen::Matrix2Xd work_2n;   ///< (2 x N)
-  std::vector<int> work_idx;  ///< (N)
-  /// (13 x N rounded up to even) per-foot quantities stored as rows, so that a pass over the
-  /// feet handles two feet per SIMD instruction (friction/coulomb.cpp)
-  Eigen::Matrix<double, 13, Eigen::Dynamic, Eigen::RowMajor> work_rows;
+  Eigen::VectorXd work_n;     ///< (N) friction/: c_k or the α_k of W_k (friction/balance.hpp)
+  Eigen::Matrix2Xd work_2n;   ///< (2 x N) friction/: the Coulomb duals λ_k, or ‖W_k u_k‖
+  std::vector<int> work_idx;  ///< (N) friction/: the Coulomb feet's states, static marks
+  SupportNewtonScratch support_newton;  ///< contact::spring_support's Newton route
+  CoulombScratch coulomb;               ///< friction::solve_coulomb
 
   [[nodiscard]] int legs() const { return static_cast<int>(q.cols()); }
 };

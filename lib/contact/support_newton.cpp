@@ -3,8 +3,8 @@
 //
 // Why a second route. Alg. 1 follows a path through the cells of the contact planes, and every
 // contact change is a scan of all feet with per-foot tie rules; with its start, polish and outputs
-// that made ~10 scalar passes of ~5 ns per foot (54 ns per leg measured on the disk robots of
-// bench_friction) for about two contact changes per frame, whatever N.
+// that makes ~10 scalar passes of ~5 ns per foot (bench_friction's disk robots) for about two
+// contact changes per frame, whatever N.
 //
 // The route. U is convex, C¹ and piecewise quadratic; on the cell of a contact set C it equals the
 // quadratic U_C, so from any state v the minimizer of U_C is one Newton step away,
@@ -14,8 +14,8 @@
 // this piecewise quadratic). It starts from the all-feet cell (the least-squares plane of all feet,
 // like §3.3.1's Newton on z*, which also starts from all feet); the steps grow slowly with the
 // feet (bench_friction's disk robots: 1.0 at 3 legs, 3.2 at 12, 4.7 at 50, like a bisection of the
-// contact set; a start at z*, tried, took fewer steps but needed the path more often on small
-// robots and was no faster): each step is one pass over the feet, four at a time (an AVX2 clone
+// contact set; a start at z* takes fewer steps but needs the path more often on small robots and
+// is no faster): each step is one pass over the feet, four at a time (an AVX2 clone
 // where the CPU has it, else pairs of SSE2 registers: same operations, hence the same rounding —
 // the clone leaves out FMA for that), with no branch on data, and a 3 × 3 solve by cofactors (one
 // division). Its Newton system is solved in the scaled state (αL, βL, z) of spring_support.cpp.
@@ -65,8 +65,8 @@ constexpr double kNearPlane = 1e3;
 // The padding foot (odd N) sits this far above the ground: never in contact, K = 0.
 constexpr double kAboveGround = 1e300;
 
-// Rows of frame.work_rows: the feet's a_j, q_z,j and K_j, and the contact flags (1.0 / 0.0) of
-// the last pass.
+// The rows of frame.support_newton in the order the passes index them: the feet's a_j, q_z,j and
+// K_j, and the contact flags (1.0 / 0.0) of the last pass.
 enum Row : int { kY = 0, kMinusX, kQz, kK, kOn, kRows };
 
 // Function multiversioning (GCC on x86-64): an AVX2 clone of support_by_newton beside the portable
@@ -261,15 +261,13 @@ double residual(const Cell& c, double Mg, double L) {
 
 SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
   const int n = frame.legs();
-  auto& W = frame.work_rows;
-  if (W.rows() < kRows || W.cols() < n || W.cols() % 2 != 0) {
+  SupportNewtonScratch& W = frame.support_newton;
+  if (!W.holds(n)) {
     return false;  // a frame resized by hand: leave it to the path search
   }
+  const Eigen::Index cols = W.qy.cols();
   // ---- the feet as rows, two per register; the padding foot far above the ground -------------
-  double* row[kRows];
-  for (int i = 0; i < kRows; ++i) {
-    row[i] = W.row(i).data();
-  }
+  double* const row[kRows] = {W.qy.data(), W.minus_qx.data(), W.qz.data(), W.K.data(), W.on.data()};
   double size2 = 0.0;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   for (int j = 0; j < n; ++j) {
@@ -283,7 +281,7 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     size = size.cwiseMax(Eigen::Vector3d(std::abs(qy), std::abs(qx), std::abs(qz)));
     size2 = std::max(size2, qx * qx + qy * qy);
   }
-  for (Eigen::Index j = n; j < W.cols(); ++j) {
+  for (Eigen::Index j = n; j < cols; ++j) {
     for (int i = 0; i < kRows; ++i) {
       row[i][j] = 0.0;
     }
@@ -291,7 +289,7 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
   }
   const double L = size2 > 0.0 ? std::sqrt(size2) : 1.0;
   const double Mg = robot.Mg;
-  const Rows R{{row[kY], row[kMinusX], row[kQz], row[kK]}, row[kOn], W.cols(), size};
+  const Rows R{{row[kY], row[kMinusX], row[kQz], row[kK]}, row[kOn], cols, size};
 
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;

@@ -13,7 +13,7 @@ namespace slipwalk::contact::detail {
 /// Fz and support.residual, iterations, newton_steps, route are written (status kBalanced).
 /// Returns false otherwise (a cell with fewer than three contacts off a line, a cycling contact
 /// set, too many steps): frame.support.newton_steps says how far it got, the other outputs are
-/// left to the path search. Uses frame.work_rows as scratch; does not allocate.
+/// left to the path search. Uses frame.support_newton as scratch; does not allocate.
 bool support_by_newton(const Robot& robot, Frame& frame);
 
 }  // namespace slipwalk::contact::detail

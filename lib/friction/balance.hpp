@@ -1,6 +1,7 @@
 #pragma once
-// Internal to friction/ and connection/: the planar force/moment balance shared by the friction
-// solvers and the local connection (thesis §3.4, derived here in body coordinates).
+// Internal to friction/: the planar force/moment balance shared by the friction solvers and,
+// through friction::ViscousSystem (viscous_system.hpp), the local connection (thesis §3.4, derived
+// here in body coordinates).
 //
 // Body-frame balance. With x = (v_x, v_y, ω) (v = R_θᵀ ṗ_xy,0, ω = θ̇) foot k slides at
 //   u_k = v + ω S q_k + q̇_k = J_k x + q̇_k,   J_k = [ I₂ | S q_k ]  (2 × 3),
@@ -191,12 +192,6 @@ void viscous_system(const contact::Robot& robot, const contact::Frame& frame, do
 /// unscaled (S q) and scaled afterwards.
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
                          Eigen::Vector3d& b);
-
-/// The viscous-Coulomb balance from its assembled (viscous_balance) and factorized system: v_body,
-/// the forces and the friction summary, as solve_viscous_coulomb writes them. For callers that
-/// need the factorization for something else too (connection::evaluate builds A from it).
-void finish_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame, const Psd3& solver,
-                            const Contacts& cs, const Eigen::Vector3d& b);
 
 /// Writes v_body from scaled coordinates.
 inline void set_velocity(contact::Frame& frame, const Eigen::Vector3d& y, double L) {

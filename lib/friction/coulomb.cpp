@@ -18,12 +18,12 @@
 // the gap of a candidate is known from a few sums, without a pass over the feet (bound()).
 //
 // Cost model. Everything per foot is computed once (setup): B_k, d_k and c_k, stored as rows of
-// frame.work_rows so that a pass over the feet handles two feet per SSE2 instruction. A pass
-// costs six multiply-adds for r_k, one square root and one division per foot, and returns all a
-// Newton step needs (Sums: D, gradient, Hessian); the line search is folded into the next pass
-// (the pass at a full step is the next step's), and the certificate needs no pass (bound()). A
-// solve is then setup + (Newton steps + 1) passes + one final pass (finish) that writes the
-// forces; what remains per step is 3 × 3 algebra, kept free of chained divisions.
+// frame.coulomb (contact/robot.hpp) so that a pass over the feet handles two feet per SSE2
+// instruction. A pass costs six multiply-adds for r_k, one square root and one division per foot,
+// and returns all a Newton step needs (Sums: D, gradient, Hessian); the line search is folded into
+// the next pass (the pass at a full step is the next step's), and the certificate needs no pass
+// (bound()). A solve is then setup + (Newton steps + 1) passes + one final pass (finish) that
+// writes the forces; what remains per step is 3 × 3 algebra, kept free of chained divisions.
 //
 // Algorithm (always terminates: every loop is bounded by options.max_iterations).
 //  1. Start at the viscous-Coulomb solution (if nothing slips there, certify that at once).
@@ -233,18 +233,24 @@ void Solver::run() {
 
 void Solver::setup() {
   // Raw row pointers: Eigen's row and block expressions cost more than the arithmetic here.
-  auto& R = frame_.work_rows;
-  if (R.cols() != (frame_.legs() + 1) / 2 * 2) {  // a frame resized after construction
-    R.resize(Eigen::NoChange, (frame_.legs() + 1) / 2 * 2);
+  contact::CoulombScratch& R = frame_.coulomb;
+  if (!R.fits(frame_.legs())) {  // a frame resized after construction
+    R = contact::CoulombScratch(frame_.legs());
     frame_.work_idx.resize(static_cast<std::size_t>(frame_.legs()));
     frame_.work_2n.resize(Eigen::NoChange, frame_.legs());
   }
-  double* row[13];
-  for (int i = 0; i < 13; ++i) {
-    row[i] = R.row(i).data();
-  }
+  double* const B[6] = {R.B.row(0).data(), R.B.row(1).data(), R.B.row(2).data(),
+                        R.B.row(3).data(), R.B.row(4).data(), R.B.row(5).data()};
+  double* const d[2] = {R.d.row(0).data(), R.d.row(1).data()};
+  double* const active_row = R.active.data();
+  double* const slide_row = R.sliding.data();
+  double* const weight_row = R.weight.data();
+  double* const inv_c2_row = R.inv_weight2.data();
+  // Every row: the padding column and the column of a foot without friction are zero in all.
+  double* const row[] = {B[0], B[1],       B[2],      B[3],        B[4],       B[5],      d[0],
+                         d[1], active_row, slide_row, R.r2.data(), weight_row, inv_c2_row};
   const int n = frame_.legs();
-  if (R.cols() > n) {  // the padding column of an odd count of feet: no foot, mask 0
+  if (R.B.cols() > n) {  // the padding column of an odd count of feet: no foot, mask 0
     for (double* r : row) {
       r[n] = 0.0;
     }
@@ -299,18 +305,18 @@ void Solver::setup() {
     // Divisions and square roots share one slow unit: one per foot here, D(0)'s norms below
     // two feet at a time.
     const double ic = 1.0 / c;
-    row[0][k] = w00;
-    row[1][k] = w01;
-    row[2][k] = w01;
-    row[3][k] = w11;
-    row[4][k] = b4;
-    row[5][k] = b5;
-    row[6][k] = d0;
-    row[7][k] = d1;
-    row[kActiveRow][k] = 1.0;
-    row[kSlideRow][k] = 1.0;
-    row[kWeightRow][k] = c;
-    row[kInvC2Row][k] = ic * ic;
+    B[0][k] = w00;
+    B[1][k] = w01;
+    B[2][k] = w01;
+    B[3][k] = w11;
+    B[4][k] = b4;
+    B[5][k] = b5;
+    d[0][k] = d0;
+    d[1][k] = d1;
+    active_row[k] = 1.0;
+    slide_row[k] = 1.0;
+    weight_row[k] = c;
+    inv_c2_row[k] = ic * ic;
     frame_.work_idx[static_cast<std::size_t>(k)] = kSlip;
     // BᵀB and Bᵀd for B = [cW | cW S q]; M₁ takes them over c.
     const double bb[6] = {w00 * w00 + w01 * w01, w00 * w01 + w01 * w11, w00 * b4 + w01 * b5,
@@ -335,12 +341,12 @@ void Solver::setup() {
   // column 2 of M (twice for the corner), b(2).
   const double il = cs_.inv_L;
   A2 D0 = A2::Zero();
-  for (Eigen::Index j = 0; j < R.cols(); j += 2) {
-    const A2 d0 = Eigen::Map<const A2>(row[6] + j);
-    const A2 d1 = Eigen::Map<const A2>(row[7] + j);
+  for (Eigen::Index j = 0; j < R.B.cols(); j += 2) {
+    const A2 d0 = Eigen::Map<const A2>(d[0] + j);
+    const A2 d1 = Eigen::Map<const A2>(d[1] + j);
     D0 += (d0 * d0 + d1 * d1).sqrt();
-    Eigen::Map<A2>(row[4] + j) *= il;
-    Eigen::Map<A2>(row[5] + j) *= il;
+    Eigen::Map<A2>(B[4] + j) *= il;
+    Eigen::Map<A2>(B[5] + j) *= il;
   }
   D0_ = D0.sum();
   scale_ = scale;
@@ -364,10 +370,10 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
     // (found without branches: which foot it is varies from frame to frame).
     int ks = held;
     if (ks < 0) {
-      const auto& R = frame_.work_rows;
+      const contact::CoulombScratch& R = frame_.coulomb;
       double best = kInf;
       for (int k = 0; k < frame_.legs(); ++k) {
-        const double v = R(kSlideRow, k) > 0.0 ? R(kR2Row, k) * R(kInvC2Row, k) : kInf;
+        const double v = R.sliding(k) > 0.0 ? R.r2(k) * R.inv_weight2(k) : kInf;
         ks = v < best ? k : ks;
         best = std::min(v, best);
       }
@@ -496,10 +502,10 @@ double Solver::bound(double primal, double value, double lmax, const Eigen::Vect
 template <bool kPath>
 FinishSums Solver::finish_pass(const Eigen::Vector3d& y, const Dual& dual,
                                const Eigen::Vector3d& mu) {
-  const Rows R = rows(kActiveRow);
-  const double* slide = frame_.work_rows.row(kSlideRow).data();
-  const double* c = frame_.work_rows.row(kWeightRow).data();
-  const double* ic2 = frame_.work_rows.row(kInvC2Row).data();
+  const Rows R = rows(true);
+  const double* slide = frame_.coulomb.sliding.data();
+  const double* c = frame_.coulomb.weight.data();
+  const double* ic2 = frame_.coulomb.inv_weight2.data();
   const Eigen::Index n = frame_.legs();
   const double y0 = y(0), y1 = y(1), y2 = y(2);
   const double p0 = dual.p(0), p1 = dual.p(1), p2 = dual.p(2);

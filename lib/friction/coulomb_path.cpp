@@ -45,7 +45,7 @@ void Solver::path(Eigen::Vector3d y, Sums& S, double Dref) {
   assemble<true>(y, delta * delta, S);
   int stage_steps = 0;
   bool stalled = false;
-  bool fresh = true;  // row kR2Row holds ‖r_k(y)‖² (try_polish classifies from it)
+  bool fresh = true;  // the row r2 holds ‖r_k(y)‖² (try_polish classifies from it)
   while (s.iterations < options_.max_iterations) {
     const Eigen::Vector3d p = smoothing_step(S);
     const double slope = S.g.dot(p);
@@ -62,7 +62,7 @@ void Solver::path(Eigen::Vector3d y, Sums& S, double Dref) {
         }
       }
       if (!fresh) {
-        assemble<true>(y, delta * delta, S);  // ‖r_k(y)‖² back into row kR2Row
+        assemble<true>(y, delta * delta, S);  // ‖r_k(y)‖² back into the row r2
       }
       Eigen::Vector3d yp = y;
       Dual dual;
@@ -182,7 +182,7 @@ int Solver::classify(double threshold) {
     if (state(k) == kInactive) {
       continue;
     }
-    const bool st = at(kR2Row, k) <= t2;
+    const bool st = slip2(k) <= t2;
     set_state(k, st ? kStatic : kSlip);
     n += st ? 1 : 0;
   }
@@ -201,7 +201,7 @@ bool Solver::try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual
     if (state(k) == kInactive) {
       continue;
     }
-    const double nr = at(kR2Row, k);
+    const double nr = slip2(k);
     set_state(k, nr <= t2 ? kStatic : kSlip);
     if (state(k) == kStatic) {
       continue;

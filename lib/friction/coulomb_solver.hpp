@@ -87,28 +87,23 @@ class Solver {
   void run();
 
  private:
-  // ---- per-foot constants (rows of frame.work_rows, one column per foot) ------------------
-  // Rows 0–5: B_k column-major (B₀₀ B₁₀ B₀₁ B₁₁ B₀₂ B₁₂), 6–7: d_k, 8: 1 for a foot with
-  // friction, 9: 1 for a sliding foot (the feet a polish pass visits), 10: ‖r_k‖² of the last
-  // pass, 11: c_k, 12: 1/c_k². An odd count of feet is padded with a zero column.
-  static constexpr int kActiveRow = 8;
-  static constexpr int kSlideRow = 9;
-  static constexpr int kR2Row = 10;
-  static constexpr int kWeightRow = 11;
-  static constexpr int kInvC2Row = 12;
-  [[nodiscard]] double at(int row, int k) const { return frame_.work_rows(row, k); }
-  [[nodiscard]] double weight(int k) const { return at(kWeightRow, k); }
+  // ---- per-foot constants (frame.coulomb, contact/robot.hpp: one column per foot) ---------
+  [[nodiscard]] double weight(int k) const { return frame_.coulomb.weight(k); }
+  [[nodiscard]] double slip2(int k) const { return frame_.coulomb.r2(k); }  ///< ‖r_k‖²
   [[nodiscard]] int state(int k) const { return frame_.work_idx[static_cast<std::size_t>(k)]; }
   void set_state(int k, int st) {
     frame_.work_idx[static_cast<std::size_t>(k)] = st;
-    frame_.work_rows(kSlideRow, k) = st == kSlip ? 1.0 : 0.0;
+    frame_.coulomb.sliding(k) = st == kSlip ? 1.0 : 0.0;
   }
   [[nodiscard]] Eigen::Matrix<double, 2, 3> B(int k) const {
+    const auto& b = frame_.coulomb.B;
     Eigen::Matrix<double, 2, 3> Bk;
-    Bk << at(0, k), at(2, k), at(4, k), at(1, k), at(3, k), at(5, k);
+    Bk << b(0, k), b(2, k), b(4, k), b(1, k), b(3, k), b(5, k);
     return Bk;
   }
-  [[nodiscard]] Eigen::Vector2d d(int k) const { return {at(6, k), at(7, k)}; }
+  [[nodiscard]] Eigen::Vector2d d(int k) const {
+    return {frame_.coulomb.d(0, k), frame_.coulomb.d(1, k)};
+  }
   [[nodiscard]] Eigen::Vector2d residual(int k, const Eigen::Vector3d& y) const {
     return B(k) * y + d(k);
   }
@@ -122,7 +117,7 @@ class Solver {
 
   // ---- passes over the feet: two feet per step, Eigen::Array2d being one SSE2 register -----
   // A foot a pass does not visit (mask 0) gets ρ ≥ 1 (finite) and the weight 0 in every sum.
-  // The row pointers are read once: the stores to row kR2Row would otherwise make the compiler
+  // The row pointers are read once: the stores to the row r2 would otherwise make the compiler
   // reload them for every pair of feet.
   using A2 = Eigen::Array2d;
   struct Rows {
@@ -132,22 +127,25 @@ class Solver {
     Eigen::Index cols;
     [[nodiscard]] A2 at(int i, Eigen::Index j) const { return Eigen::Map<const A2>(b[i] + j); }
   };
-  [[nodiscard]] Rows rows(int mask_row) {
-    auto& R = frame_.work_rows;
+  /// The rows of a pass over every foot with friction (all) or over the sliding ones.
+  [[nodiscard]] Rows rows(bool all) {
+    contact::CoulombScratch& R = frame_.coulomb;
     Rows out{};
-    for (int i = 0; i < 8; ++i) {
-      out.b[i] = R.row(i).data();
+    for (int i = 0; i < 6; ++i) {
+      out.b[i] = R.B.row(i).data();
     }
-    out.mask = R.row(mask_row).data();
-    out.r2 = R.row(kR2Row).data();
-    out.cols = R.cols();
+    out.b[6] = R.d.row(0).data();
+    out.b[7] = R.d.row(1).data();
+    out.mask = all ? R.active.data() : R.sliding.data();
+    out.r2 = R.r2.data();
+    out.cols = R.B.cols();
     return out;
   }
 
   /// Σ √(‖r_k(y)‖² + δ²) over the visited feet (kAll: all with friction, else the sliding ones).
   template <bool kAll>
   double value(const Eigen::Vector3d& y, double d2) {
-    const Rows R = rows(kAll ? kActiveRow : kSlideRow);
+    const Rows R = rows(kAll);
     const double y0 = y(0), y1 = y(1), y2 = y(2);
     A2 f = A2::Zero();
     for (Eigen::Index j = 0; j < R.cols; j += 2) {
@@ -160,7 +158,7 @@ class Solver {
   }
 
   /// The Sums of D_δ over the visited feet at y (one pass, the solver's cost); leaves ‖r_k‖² of
-  /// every foot in row kR2Row. With δ = 0 the Hessian term is t_k t_kᵀ/‖r_k‖
+  /// every foot in the row r2. With δ = 0 the Hessian term is t_k t_kᵀ/‖r_k‖
   /// (t_k = B_kᵀ n_k⊥); a visited foot with r_k = 0 then gives r2_min = 0 and a non-finite H,
   /// which the caller rejects.
   template <bool kAll>
@@ -173,7 +171,7 @@ class Solver {
   }
   template <bool kAll, bool kSmooth>
   void assemble(const Eigen::Vector3d& y, double d2, Sums& S) {
-    const Rows R = rows(kAll ? kActiveRow : kSlideRow);
+    const Rows R = rows(kAll);
     const double y0 = y(0), y1 = y(1), y2 = y(2);
     A2 f = A2::Zero(), inv = A2::Zero(), rho_max = A2::Zero(), r2_min = A2::Constant(kInf);
     A2 g0 = A2::Zero(), g1 = A2::Zero(), g2 = A2::Zero();
@@ -293,9 +291,9 @@ class Solver {
   StaticDual static_duals(const Eigen::Vector3d& y, const Eigen::Vector3d& gp);
   void zero_static_duals();
   // ---- the active set ---------------------------------------------------------------------------
-  /// Marks feet with ‖r_k‖ ≤ threshold static (from ‖r_k‖² in row kR2Row); returns how many.
+  /// Marks feet with ‖r_k‖ ≤ threshold static (from ‖r_k‖² in the row r2); returns how many.
   int classify(double threshold);
-  /// A polish attempt at the end of a smoothing stage (‖r_k(y)‖² in row kR2Row): the feet with
+  /// A polish attempt at the end of a smoothing stage (‖r_k(y)‖² in the row r2): the feet with
   /// ‖r_k‖ ≤ threshold are static, and the slowest other foot too if it is clearly apart (step 2
   /// of coulomb_path.cpp).
   bool try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual& dual);

@@ -1,9 +1,11 @@
 // Viscous-Coulomb friction (eqs. 3.14 with ε → ∞ and 3.19): the body-frame balance M x = −b of
 // friction/balance.hpp, one 3 × 3 solve. Two passes over the feet: the system (with the contact
-// summary, detail::viscous_balance) and the forces; both in scalars, since per foot there is
-// only a handful of multiply-adds and any temporary or repeated lookup is a visible share.
+// summary, detail::viscous_balance; the ViscousSystem of viscous_system.hpp) and the forces; both
+// in scalars, since per foot there is only a handful of multiply-adds and any temporary or
+// repeated lookup is a visible share.
 #include "friction/balance.hpp"
 #include "friction/solvers.hpp"
+#include "friction/viscous_system.hpp"
 
 namespace slipwalk::friction {
 
@@ -13,8 +15,8 @@ namespace {
 /// balance Σ J_kᵀ F_k + f = 0 reads M x = f − b, so x = M⁻¹ f − M⁻¹ b: the same matrix and the
 /// same A as eq. 3.20, plus the constant M⁻¹ f (terrain/terrain.hpp derives f for a slope). The
 /// unloaded instantiation is the flat path, with no code for f.
-/// finish() takes the assembled and factorized system (solve() below, or connection::evaluate,
-/// which factorizes it once for both A and v).
+/// finish() takes the assembled and factorized system (solve() below, or a ViscousSystem that
+/// connection::evaluate also builds A from).
 template <bool kLoaded>
 void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Psd3& solver,
             const detail::Contacts& cs, const Eigen::Vector3d& b, const Eigen::Vector3d& load) {
@@ -113,10 +115,23 @@ void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vect
 
 }  // namespace
 
-void detail::finish_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame,
-                                    const Psd3& solver, const Contacts& cs,
-                                    const Eigen::Vector3d& b) {
-  finish<false>(robot, frame, solver, cs, b, Eigen::Vector3d::Zero());
+ViscousSystem::ViscousSystem(const contact::Robot& robot, contact::Frame& frame)
+    : weights_(frame.work_n.data()) {
+  Eigen::Matrix3d M;
+  contacts_ = detail::viscous_balance(robot, frame, M, b_);  // c_k in work_n
+  solver_.factorize(M);
+}
+
+Eigen::Matrix3d ViscousSystem::inverse() const {
+  Eigen::Matrix3d P = solver_.inverse();
+  P.row(2) *= contacts_.inv_L;
+  P.col(2) *= contacts_.inv_L;
+  return P;
+}
+
+void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame,
+                           const ViscousSystem& system) {
+  finish<false>(robot, frame, system.solver_, system.contacts_, system.b_, Eigen::Vector3d::Zero());
 }
 
 void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame) {

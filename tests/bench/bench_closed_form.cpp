@@ -1,4 +1,4 @@
-// Cost of v_ss per (F, μ): the algebraic closed form (issue 2 target: ≤ 2 µs), the GSL fixed
+// Cost of v_ss per (F, μ): the algebraic closed form (aim: ≤ 2 µs), the GSL fixed
 // point of the stroke map, and the exact event-driven simulation to 1e-12.
 #include <benchmark/benchmark.h>
 

@@ -1,7 +1,7 @@
-// Cost per frame of the friction balance (§3.4) with contact and F_z given: viscous-Coulomb (issue
-// 5 target ≤ 1 µs for a hexapod), the local connection A, the ε-law and classical Coulomb to a
-// relative duality gap of 1e-9 (target ≤ 10 µs and ≤ 10× viscous), for 3…50 legs (target: ≤ ×2
-// from 3 to 50 legs); and the whole frame (connection::evaluate: spring support, A, friction
+// Cost per frame of the friction balance (§3.4) with contact and F_z given: viscous-Coulomb (aim:
+// ≤ 1 µs for a hexapod), the local connection A, the ε-law and classical Coulomb to a relative
+// duality gap of 1e-9 (aim: ≤ 10 µs and ≤ 10× viscous), for 3…50 legs (aim: ≤ ×2 from 3 to 50
+// legs); and the whole frame (connection::evaluate: spring support, A, friction
 // law) and the spring support alone, the rows Fig. 3.13a times. Robots as in thesis §3.5.3 /
 // Fig. 3.13: a disk of radius 0.3 m with N legs equally spaced on the rim; 4096 random poses and
 // velocities per N, all feet on the ground with random loads (for the whole frame: random leg

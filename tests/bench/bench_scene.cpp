@@ -1,4 +1,4 @@
-// "Unused effects cost nothing" (issue 8, DESIGN.md): the time per step of BigANT's tripod (0.5
+// "Unused effects cost nothing" (DESIGN.md, Principles): the time per step of BigANT's tripod (0.5
 // Hz, dt = 0.01 s, 1000 steps per run) through the kernel hand-written for the flat isotropic
 // viscous case (scene/reference_kernel.hpp) and through composed scenes (scene::compose) with
 // none or exactly one effect: anisotropic friction, Coulomb friction, the inertia filter, the

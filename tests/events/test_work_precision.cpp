@@ -1,5 +1,5 @@
-// Work–precision on small cases (the cost-of-accuracy study, issue 4): for every simulation
-// method, the error of v_ss against the closed form shrinks as its tolerance tightens —
+// Work–precision on small cases (the cost-of-accuracy study, studies/cost_of_accuracy): for every
+// simulation method, the error of v_ss against the closed form shrinks as its tolerance tightens —
 // monotone within a factor — and the fixed-step method's shrinks about linearly in its step.
 // Also the error sources the study separates: with the events at the exact times the
 // Runge–Kutta methods make no integration error at all, and our stopping rule meets its target

@@ -1,9 +1,8 @@
 // The Coulomb solver on spring-supported hexapod frames, as the ch3_legged cost study builds
-// them (sweeps/legged_cost_points.cpp): 3–6 feet down with the spring support's loads, often one
+// them (sweeps/points/legged_cost.cpp): 3–6 feet down with the spring support's loads, often one
 // foot that friction holds still. Oracles: the smoothing path (fast_path = false, a second
 // route to the same convex minimum) and the certificate; and, for frames whose first Newton
-// step had to be cut below 1/16 (which used to send them to the smoothing path), that the fast
-// path now certifies them in a few steps.
+// step must be cut below 1/16, that the fast path certifies them in a few steps.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>

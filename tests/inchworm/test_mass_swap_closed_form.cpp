@@ -1,7 +1,8 @@
 // The hand-derived dm model (mass_swap_closed_form.hpp: stroke, swap and cycle maps, the fixed
 // point of the cycle map) against the exact event-driven simulation of MassSwapSystem (the
 // oracle): the steady state over the thesis range, single strokes, swaps and half cycles from
-// constructed states, the hard cases of issue 3, and the numeric backends.
+// constructed states, hard cases (strong swaps, low friction, static friction), and the numeric
+// backends.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -427,7 +428,8 @@ TEST(DmHalfCycle, MatchesSimulateHalfCycle) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Hard cases of issue 3.
+// Hard cases: strong swaps at low friction, static friction at the body, very small swap forces,
+// and the speed across the boundaries between the models' modes.
 
 TEST(DmHardCases, StrongSwapAtLowFriction) {
   // α = 10, μ = 0.1: the body is thrown backward at (αF − F_b)/2m in the extension swap and

@@ -1,5 +1,6 @@
 // v_ss by exact event-driven simulation against the closed form, the honesty of the remaining-
-// error estimate, the thesis' stopping protocol, determinism and the hard cases of issue 2.
+// error estimate, the thesis' stopping protocol, determinism and hard cases (regime boundaries,
+// slow convergence, strong actuators).
 #include <gtest/gtest.h>
 
 #include "events/exact_backend.hpp"
@@ -87,7 +88,8 @@ TEST(Simulation, IsDeterministic) {
   EXPECT_EQ(a.strokes, b.strokes);
 }
 
-// Hard cases of issue 2: each converges and matches the closed form to 1e-9.
+// Hard cases (regime boundaries, slow convergence at low friction, strong actuators, static
+// friction above sliding): each converges and matches the closed form to 1e-9.
 struct HardCase {
   const char* name;
   double F_over_Mg;  // if > 0, F = F_over_Mg M g
@@ -117,7 +119,7 @@ TEST_P(HardCases, ConvergeAndMatchTheClosedForm) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Issue2, HardCases,
+    Inchworm, HardCases,
     ::testing::Values(HardCase{"JustAboveSmallMassFriction", 0, 1 + 1e-9, false, 1.0, 0},
                       HardCase{"RegimeBoundaryBelow", 0, 1 - 1e-9, true, 1.0, 0},
                       HardCase{"RegimeBoundaryAbove", 0, 1 + 1e-9, true, 1.0, 0},

@@ -1,0 +1,126 @@
+// friction::ViscousSystem, the viscous balance M x = −b of eq. 3.20 assembled and factorized once.
+// Oracles: M and b summed by hand from their definition (friction/balance.hpp,
+// M = Σ c_k J_kᵀ G_k J_k, b = Σ c_k J_kᵀ G_k q̇_k with J_k = [I | S q_k]), the Moore–Penrose
+// conditions when the contacts are one point, and solve_viscous_coulomb(robot, frame) to the bit.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <random>
+
+#include "contact/robot.hpp"
+#include "friction/solvers.hpp"
+#include "friction/viscous_system.hpp"
+
+namespace slipwalk::friction {
+namespace {
+
+struct Case {
+  contact::Robot robot;
+  contact::Frame frame;
+};
+
+// n feet at random positions and velocities, random loads, anisotropic when asked; foot 0 in the
+// air so that a zero weight is covered.
+Case random_case(int n, bool anisotropic, std::mt19937& rng) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  contact::Robot robot = contact::uniform_robot(n, 100.0, 0.7, 9.81);
+  for (int k = 0; k < n; ++k) {
+    robot.mu(k) = 0.4 + 0.3 * (U(rng) + 1.0);
+    if (anisotropic) {
+      robot.w.col(k) << 0.6 * U(rng), 0.6 * U(rng);
+    }
+  }
+  contact::Frame f(robot);
+  for (int k = 0; k < n; ++k) {
+    f.q.col(k) << 0.4 * U(rng), 0.3 * U(rng), -0.1;
+    f.qdot.col(k) << 0.2 * U(rng), 0.2 * U(rng), 0.0;
+    f.contact[static_cast<std::size_t>(k)] = k == 0 ? 0 : 1;
+    f.Fz(k) = k == 0 ? 0.0 : 1.0 + U(rng);
+  }
+  return {robot, f};
+}
+
+// M and b from their definition, unscaled, with Eigen's matrices.
+void by_hand(const Case& c, Eigen::Matrix3d& M, Eigen::Vector3d& b) {
+  M.setZero();
+  b.setZero();
+  for (int k = 0; k < c.robot.legs(); ++k) {
+    if (c.frame.contact[static_cast<std::size_t>(k)] == 0) {
+      continue;
+    }
+    const double ck = c.robot.mu(k) * c.frame.Fz(k);
+    const Eigen::Vector2d w = c.robot.w.col(k);
+    const Eigen::Matrix2d G = Eigen::Matrix2d::Identity() + w * w.transpose();
+    Eigen::Matrix<double, 2, 3> J;
+    J << 1.0, 0.0, -c.frame.q(1, k), 0.0, 1.0, c.frame.q(0, k);
+    M += ck * J.transpose() * G * J;
+    b += ck * J.transpose() * G * c.frame.qdot.col(k).head<2>();
+  }
+}
+
+TEST(ViscousSystem, InverseAndWeightsMatchTheBalanceSummedByHand) {
+  std::mt19937 rng(7);
+  for (bool anisotropic : {false, true}) {
+    for (int n : {3, 4, 6, 9}) {
+      for (int trial = 0; trial < 20; ++trial) {
+        Case c = random_case(n, anisotropic, rng);
+        Eigen::Matrix3d M;
+        Eigen::Vector3d b;
+        by_hand(c, M, b);
+        const ViscousSystem system(c.robot, c.frame);
+        EXPECT_EQ(system.anisotropic(), anisotropic);
+        for (int k = 0; k < n; ++k) {
+          const double expected = k == 0 ? 0.0 : c.robot.mu(k) * c.frame.Fz(k);
+          EXPECT_EQ(system.weight(k), expected);
+          EXPECT_EQ(system.weights()[k], expected);
+        }
+        const Eigen::Matrix3d P = system.inverse();
+        EXPECT_LT((P * M - Eigen::Matrix3d::Identity()).norm(), 1e-10);
+        // The body velocity the system gives is −M⁻¹ b, as solve_viscous_coulomb writes it.
+        solve_viscous_coulomb(c.robot, c.frame, system);
+        EXPECT_LT((c.frame.v_body + P * b).norm(), 1e-12 * (1.0 + (P * b).norm()));
+      }
+    }
+  }
+}
+
+TEST(ViscousSystem, SolveFromTheSystemIsTheSolveToTheBit) {
+  std::mt19937 rng(8);
+  for (bool anisotropic : {false, true}) {
+    for (int trial = 0; trial < 50; ++trial) {
+      Case c = random_case(6, anisotropic, rng);
+      contact::Frame g = c.frame;
+      const ViscousSystem system(c.robot, c.frame);
+      solve_viscous_coulomb(c.robot, c.frame, system);
+      solve_viscous_coulomb(c.robot, g);
+      EXPECT_EQ((c.frame.v_body - g.v_body).norm(), 0.0);
+      EXPECT_EQ((c.frame.Fxy - g.Fxy).norm(), 0.0);
+      EXPECT_EQ(c.frame.friction.residual, g.friction.residual);
+      EXPECT_EQ(c.frame.friction.dissipation, g.friction.dissipation);
+      EXPECT_EQ(c.frame.friction.unique, g.friction.unique);
+    }
+  }
+}
+
+TEST(ViscousSystem, ContactsAtOnePointGiveThePseudoInverse) {
+  // Two feet at the same point: M has rank 2 (the rotation about the point is free); M⁺ must
+  // satisfy the Moore–Penrose conditions of the scaled system, which for D M̃⁺ D read
+  // M P M = M and P M P = P, with P symmetric.
+  std::mt19937 rng(9);
+  Case c = random_case(3, true, rng);
+  c.frame.q.col(2) = c.frame.q.col(1);
+  Eigen::Matrix3d M;
+  Eigen::Vector3d b;
+  by_hand(c, M, b);
+  const ViscousSystem system(c.robot, c.frame);
+  const Eigen::Matrix3d P = system.inverse();
+  EXPECT_LT((M * P * M - M).norm(), 1e-10 * M.norm());
+  EXPECT_LT((P * M * P - P).norm(), 1e-10 * P.norm());
+  EXPECT_LT((P - P.transpose()).norm(), 1e-12 * P.norm());
+  solve_viscous_coulomb(c.robot, c.frame, system);
+  EXPECT_FALSE(c.frame.friction.unique);
+  EXPECT_TRUE(c.frame.v_body.allFinite());
+}
+
+}  // namespace
+}  // namespace slipwalk::friction
