@@ -19,6 +19,7 @@ struct ReproduceCommand {
   const std::string source = SLIPWALK_SOURCE_DIR;
   bool quick = false;
   bool fresh = false;
+  bool keep_finished = false;
   bool no_report = false;
   int jobs = 0;
   std::string data = source + "/data";
@@ -33,6 +34,7 @@ struct ReproduceCommand {
     options.data_dir = data;
     options.quick = quick;
     options.resume = !fresh;
+    options.keep_finished = keep_finished;
     options.jobs = jobs;
     options.report = !no_report;
     options.report_dir = report;
@@ -60,8 +62,9 @@ void add_reproduce_command(CLI::App& app) {
   sub->add_option("STUDY", cmd->names,
                   "studies to run (folder names under --studies; default all)");
   sub->add_flag("--quick", cmd->quick, "the specs' [quick] overrides: a smoke run");
-  sub->add_flag("--fresh", cmd->fresh,
-                "rerun every job: discard finished results and checkpoints of interrupted sweeps");
+  sub->add_flag("--fresh", cmd->fresh, "discard checkpoints of interrupted sweeps");
+  sub->add_flag("--keep-finished", cmd->keep_finished,
+                "do not rerun a job whose outputs this build wrote for the same inputs");
   sub->add_flag("--no-report", cmd->no_report, "run the studies only, not the report builder");
   sub->add_option("--jobs,-j", cmd->jobs, "threads per sweep (default: one per core)");
   sub->add_option("--data", cmd->data, "data folder (default <source>/data)");

@@ -199,7 +199,7 @@ ReproduceSummary reproduce(const ReproduceOptions& options) {
   context.sweep.resume = options.resume;
   context.sweep.progress = options.progress;
   context.quick = options.quick;
-  context.keep_finished = options.resume;
+  context.keep_finished = options.resume && options.keep_finished;
 
   ReproduceSummary summary;
   for (const auto& l : loaded) {

@@ -31,10 +31,14 @@ struct ReproduceOptions {
   std::vector<std::string> names;
   std::filesystem::path data_dir = "data";  ///< outputs: <data_dir>/<study>/<name>.{csv,json}
   bool quick = false;  ///< the specs' [quick] overrides and scenes' quick_duration: a smoke run
-  /// true (default): keep what earlier runs finished — a job whose CSV and sidecar this build
-  /// wrote for the same inputs is not rerun, an interrupted sweep continues from its checkpoint.
-  /// false (`--fresh`): every job runs, checkpoints are discarded.
+  /// true (default): an interrupted sweep continues from its checkpoint. false (`--fresh`):
+  /// checkpoints are discarded (and keep_finished is ignored).
   bool resume = true;
+  /// true (`--keep-finished`): a job whose CSV and sidecar exist and were written by this build
+  /// (the git commit configured into it) for the same inputs is not rerun and counts its points
+  /// as resumed. Off by default: a code change that is not yet committed and configured would
+  /// leave stale results in place.
+  bool keep_finished = false;
   int jobs = 0;        ///< threads per sweep, 1 to 4096; 0 (default): one per core
   bool report = true;  ///< run the report builder after the studies
   std::filesystem::path report_dir = "reports/out";   ///< the builder's --out

@@ -122,10 +122,12 @@ TEST(Reproduce, RunsEveryJobAndCountsItsPoints) {
             s.brief_report().find(';'));
 }
 
-TEST(Reproduce, ASecondCallWithResumeRecomputesNothing) {
+TEST(Reproduce, ASecondCallKeepingFinishedJobsRecomputesNothing) {
   const ScratchDir d;
   write_tiny_study(d / "studies");
-  const ReproduceSummary first = reproduce(options_for(d));
+  ReproduceOptions keep = options_for(d);
+  keep.keep_finished = true;
+  const ReproduceSummary first = reproduce(keep);
   std::vector<std::string> bytes;
   std::vector<fs::file_time_type> times;
   for (const auto& j : first.jobs) {
@@ -133,7 +135,7 @@ TEST(Reproduce, ASecondCallWithResumeRecomputesNothing) {
     times.push_back(fs::last_write_time(j.csv));
   }
 
-  const ReproduceSummary second = reproduce(options_for(d));
+  const ReproduceSummary second = reproduce(keep);
   ASSERT_EQ(second.jobs.size(), first.jobs.size());
   for (std::size_t i = 0; i < second.jobs.size(); ++i) {
     const JobSummary& j = second.jobs[i];
@@ -150,12 +152,15 @@ TEST(Reproduce, ASecondCallWithResumeRecomputesNothing) {
   std::string text = read_text(spec);
   text.replace(text.find("45.0"), 4, "40.0");
   write_text(spec, text);
-  const ReproduceSummary third = reproduce(options_for(d));
+  const ReproduceSummary third = reproduce(keep);
   EXPECT_EQ(third.jobs[0].resumed, 1);
   EXPECT_EQ(third.jobs[2].resumed, 0);
 
-  // Without resume every job runs again.
-  ReproduceOptions fresh = options_for(d);
+  // By default, and with --fresh, every job runs again.
+  for (const auto& j : reproduce(options_for(d)).jobs) {
+    EXPECT_EQ(j.resumed, 0) << j.name;
+  }
+  ReproduceOptions fresh = keep;
   fresh.resume = false;
   for (const auto& j : reproduce(fresh).jobs) {
     EXPECT_EQ(j.resumed, 0) << j.name;
