@@ -117,6 +117,15 @@ const FrictionLawEntry& friction_law_of(const FrictionEffect& effect) {
   throw std::logic_error("scene: a friction effect without a table entry");
 }
 
+const FrictionLawEntry* find_friction_law(std::string_view name) {
+  for (const FrictionLawEntry& entry : friction_laws()) {
+    if (entry.name == name) {
+      return &entry;
+    }
+  }
+  return nullptr;
+}
+
 std::vector<std::string_view> friction_table_keys() {
   std::vector<std::string_view> keys = {"law"};
   for (const FrictionLawEntry& entry : friction_laws()) {

@@ -40,6 +40,9 @@ struct FrictionLawEntry {
 /// The entry of a scene's friction effect (by its law and anisotropic fields).
 [[nodiscard]] const FrictionLawEntry& friction_law_of(const FrictionEffect& effect);
 
+/// The entry named `name`; nullptr if the table has none.
+[[nodiscard]] const FrictionLawEntry* find_friction_law(std::string_view name);
+
 /// The keys of [friction]: "law", then every law's own keys.
 [[nodiscard]] std::vector<std::string_view> friction_table_keys();
 

@@ -11,6 +11,7 @@
 #include "contact/frame_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "scene/friction_laws.hpp"
 #include "sweeps/cli/commands.hpp"
 
 namespace slipwalk::cli {
@@ -30,14 +31,22 @@ std::string read_all(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+/// The isotropic laws of the scene format's table (a frame's own `w` makes either anisotropic).
 connection::FrictionLaw friction_law(const std::string& name) {
-  if (name == "viscous") {
-    return connection::FrictionLaw::kViscousCoulomb;
+  const scene::FrictionLawEntry* entry = scene::find_friction_law(name);
+  if (entry != nullptr && !entry->anisotropic) {
+    return entry->law;
   }
-  if (name == "coulomb") {
-    return connection::FrictionLaw::kCoulomb;
+  std::string message = "unknown friction law '";
+  message.append(name).append("'; expected ");
+  bool first = true;
+  for (const scene::FrictionLawEntry& e : scene::friction_laws()) {
+    if (!e.anisotropic) {
+      message.append(first ? "" : "|").append(e.name);
+      first = false;
+    }
   }
-  throw InputError("--friction", "unknown friction law '" + name + "'; expected viscous|coulomb");
+  throw InputError("--friction", message);
 }
 
 /// Writes `text` to --out (atomically) or stdout.

@@ -11,6 +11,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "scene/friction_laws.hpp"
 #include "sweeps/engine/toml_util.hpp"
 
 namespace slipwalk::sweeps {
@@ -202,14 +203,24 @@ SceneJob parse_scene_entry(const toml::table& t, const std::filesystem::path& di
                        "override switches isotropic scenes between viscous and "
                        "coulomb");
     }
-    if (law == "viscous") {
-      sc.friction.law = connection::FrictionLaw::kViscousCoulomb;
-    } else if (law == "coulomb") {
-      sc.friction.law = connection::FrictionLaw::kCoulomb;
-    } else {
-      throw InputError(where["law"],
-                       "law: unknown law '" + law + "'; expected \"viscous\" or \"coulomb\"");
+    // The isotropic laws of the scene format's table: those an override may switch between.
+    std::vector<std::string_view> names;
+    for (const scene::FrictionLawEntry& entry : scene::friction_laws()) {
+      if (!entry.anisotropic) {
+        names.push_back(entry.name);
+      }
     }
+    const scene::FrictionLawEntry* entry = scene::find_friction_law(law);
+    if (entry == nullptr || entry->anisotropic) {
+      std::string message = "law: unknown law '";
+      message.append(law).append("'; expected ");
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        message.append(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ");
+        message.append("\"").append(names[i]).append("\"");
+      }
+      throw InputError(where["law"], message);
+    }
+    sc.friction.law = entry->law;
   }
   if (nodes.count("filter")) {
     const auto* on = nodes["filter"]->as_boolean();
