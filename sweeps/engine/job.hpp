@@ -33,8 +33,8 @@ struct JobContext {
   RunOptions sweep;    ///< data_dir (every job's outputs), jobs, resume, progress (sweeps)
   bool quick = false;  ///< scene runs take their quick_duration (sweeps are prepared quick)
   /// Keep a job whose CSV and sidecar exist and were written by this build (git commit) for the
-  /// same inputs: it is not rerun and its summary counts its points as resumed. Sweeps also
-  /// continue from their checkpoints when set (sweep.resume).
+  /// same inputs: it is not rerun and its summary counts its points as resumed. Independent of
+  /// sweep.resume, which continues interrupted sweeps from their checkpoints.
   bool keep_finished = false;
 };
 
