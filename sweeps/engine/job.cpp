@@ -10,6 +10,7 @@
 #include "core/provenance.hpp"
 #include "inchworm/trace_file.hpp"
 #include "scene/run_writer.hpp"
+#include "sweeps/engine/timing.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -17,10 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 fs::path sidecar_of(fs::path csv) { return csv.replace_extension(".json"); }
 
@@ -100,21 +97,19 @@ JobSummary run_kind(const SweepRun& run, const JobContext& context) {
   }
   const auto start = Clock::now();
   const RunSummary s = sweeps::run(sweep, context.sweep);
-  return {sweep.spec.study, sweep.spec.name, "sweep",      s.csv, s.points,
-          s.failed,         s.resumed,       since(start), {}};
+  return {sweep.spec.study, sweep.spec.name,      "sweep", s.csv, s.points, s.failed,
+          s.resumed,        seconds_since(start), {}};
 }
 
 }  // namespace
 
 std::string JobSummary::line() const {
-  char time[32];
-  std::snprintf(time, sizeof time, "%.1f s", seconds);
   std::string out = "  " + kind + " " + name;
   if (kind == "sweep") {
     out += ": " + std::to_string(points) + " points (" + std::to_string(failed) + " failed, " +
            std::to_string(resumed) + " resumed)";
   }
-  return out + " -> " + csv.string() + " (" + time + ")";
+  return out + " -> " + csv.string() + " (" + seconds_text(seconds) + ")";
 }
 
 JobSummary run_job(const Job& job, const JobContext& context) {
@@ -125,7 +120,7 @@ JobSummary write_trace_job(const Study& study, const TraceJob& job, const fs::pa
   const auto start = Clock::now();
   const fs::path csv = data_dir / study.id / (job.name + ".csv");
   inchworm::write_trace_file(job.params, job.method, job.options, csv);
-  const double wall_s = since(start);
+  const double wall_s = seconds_since(start);
   const inchworm::Params& p = job.params;
   const nlohmann::json sidecar = {
       {"study", study.id},
@@ -156,7 +151,7 @@ JobSummary write_trace_job(const Study& study, const TraceJob& job, const fs::pa
       {"provenance", core::build_provenance()},
   };
   core::write_file_atomically(sidecar_of(csv), sidecar.dump(1) + "\n");
-  return {study.id, job.name, "trace", csv, 1, 0, 0, since(start), {}};
+  return {study.id, job.name, "trace", csv, 1, 0, 0, seconds_since(start), {}};
 }
 
 JobSummary write_scene_job(const Study& study, const SceneJob& job, const fs::path& data_dir,
@@ -179,7 +174,7 @@ JobSummary write_scene_job(const Study& study, const SceneJob& job, const fs::pa
                       " unsupported and " + std::to_string(s.not_converged) +
                       " unconverged frames; first at " + s.message;
   }
-  summary.seconds = since(start);
+  summary.seconds = seconds_since(start);
   return summary;
 }
 

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "sweeps/engine/spec.hpp"
+#include "sweeps/engine/timing.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -16,16 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string seconds_text(double s) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f s", s);
-  return buffer;
-}
 
 /// Runs argv[0] with arguments, no shell; returns its exit status (-1: could not start).
 int run_program(const std::vector<std::string>& args) {
@@ -118,7 +109,7 @@ void build_report(const ReproduceOptions& options, ReproduceSummary& summary) {
     *options.log << "== report -> " << options.report_dir.string() << std::endl;
   }
   const int status = run_program(args);
-  summary.report_seconds = since(start);
+  summary.report_seconds = seconds_since(start);
   if (status != 0) {
     summary.report = ReportOutcome::kFailed;
     summary.report_message = "the report builder (" + builder + ") failed" +
@@ -220,7 +211,7 @@ ReproduceSummary reproduce(const ReproduceOptions& options) {
     }
   }
   build_report(options, summary);
-  summary.seconds = since(start);
+  summary.seconds = seconds_since(start);
   return summary;
 }
 

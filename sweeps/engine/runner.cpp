@@ -18,6 +18,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
+#include "sweeps/engine/timing.hpp"
 
 namespace slipwalk::sweeps {
 
@@ -184,12 +185,6 @@ void write_partial_start(const std::filesystem::path& path, const std::string& h
   file.commit();
 }
 
-std::string seconds(double s) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f s", s);
-  return buffer;
-}
-
 }  // namespace
 
 std::filesystem::path csv_path(const Spec& spec, const std::filesystem::path& data) {
@@ -331,8 +326,8 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
           const auto remaining =
               static_cast<double>(pending.size()) - static_cast<double>(computed);
           *options.progress << label << done.size() << "/" << n_points << " points, "
-                            << seconds(elapsed) << ", ETA "
-                            << seconds(elapsed / static_cast<double>(computed) * remaining)
+                            << seconds_text(elapsed) << ", ETA "
+                            << seconds_text(elapsed / static_cast<double>(computed) * remaining)
                             << std::endl;
         }
       }
@@ -355,7 +350,7 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
     }
   }
 
-  summary.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+  summary.wall_s = seconds_since(start);
   nlohmann::json failed = nlohmann::json::array();
   for (const auto& [id, f] : done) {
     if (f.failed) {

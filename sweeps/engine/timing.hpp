@@ -1,6 +1,8 @@
 #pragma once
 // Clocks and order statistics for the timed point kinds: one place, so that every timing in the
 // report is taken and summarised the same way.
+#include <chrono>
+#include <string>
 #include <vector>
 
 namespace slipwalk::sweeps {
@@ -10,6 +12,11 @@ namespace slipwalk::sweeps {
 [[nodiscard]] double thread_cpu_seconds();
 /// CPU time of the whole process (all threads), s: the work parallel sections did.
 [[nodiscard]] double process_cpu_seconds();
+
+/// Wall seconds on the steady clock since `start`.
+[[nodiscard]] double seconds_since(std::chrono::steady_clock::time_point start);
+/// A duration as the logs print it: "12.3 s".
+[[nodiscard]] std::string seconds_text(double seconds);
 
 /// The p-quantile of sorted values by linear interpolation between order statistics (numpy's
 /// default percentile); NaN for no values.

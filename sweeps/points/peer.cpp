@@ -62,10 +62,6 @@ constexpr double kHeight = 0.1;              // m: feet this far below the body 
 constexpr double kRadius = 0.3;              // m: the disk's rim (§3.5.3)
 constexpr double kReach = 0.05;              // m: a foot's nominal distance outside its hip
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 /// ns per call of f: k calls in a row, k so that the batch lasts ≥ min_batch_s (from one
 /// untimed-for-the-result call, which also warms the caches); median over `batches` batches.
 template <class F>
