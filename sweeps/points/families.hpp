@@ -15,8 +15,12 @@ namespace slipwalk::sweeps::points {
 
 /// The inchworm of ch. 2: v_ss by any method, convergence from rest (inchworm.cpp).
 [[nodiscard]] std::vector<PointKind> inchworm_kinds();
-/// The multi-legged model of ch. 3: 1-D legs, force maps, support paths, ε errors (legged.cpp).
-[[nodiscard]] std::vector<PointKind> legged_kinds();
+/// The friction laws of ch. 3 on synthetic feet: 1-D legs, law comparisons, ε errors
+/// (legged_laws.cpp).
+[[nodiscard]] std::vector<PointKind> legged_law_kinds();
+/// The multi-legged model of ch. 3 on robot frame files: force maps, support paths
+/// (legged_frames.cpp).
+[[nodiscard]] std::vector<PointKind> legged_frame_kinds();
 /// The cost and accuracy of the multi-legged model's solvers (legged_cost.cpp).
 [[nodiscard]] std::vector<PointKind> legged_cost_kinds();
 /// The speed comparisons of §3.5.3, Fig. 3.13: MuJoCo peer and parallel steps (peer.cpp).

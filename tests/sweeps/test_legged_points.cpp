@@ -1,6 +1,7 @@
-// The multi-legged model's point kinds (sweeps/points/legged.cpp): check() rejects bad keys and
-// values naming the spec key; run() gives the known answers on tiny cases (§3.1.2: Coulomb =
-// −median, viscous-Coulomb = −mean; §3.6.2: the single-foot force errors in closed form).
+// The multi-legged model's point kinds (sweeps/points/legged_laws.cpp and legged_frames.cpp):
+// check() rejects bad keys and values naming the spec key; run() gives the known answers on tiny
+// cases (§3.1.2: Coulomb = −median, viscous-Coulomb = −mean; §3.6.2: the single-foot force errors
+// in closed form).
 #include <gtest/gtest.h>
 
 #include <algorithm>
