@@ -111,12 +111,13 @@ CostInputs read_cost(const Point& point) {
 /// on a rim of radius 0.3 m (thesis §3.5.3). Both: Mg = 8.18 kg · g, K such that the body sinks
 /// kSinkage with every foot down, μ = 1, isotropic. Returns the nominal foot positions.
 contact::Robot make_robot(const CostInputs& in, Eigen::Matrix3Xd& nominal) {
-  const contact::Robot robot =
+  contact::Robot robot =
       contact::uniform_robot(in.n, kBodyWeight / (in.n * kSinkage), 1.0, kBodyWeight);
   nominal.resize(3, in.n);
   for (int k = 0; k < in.n; ++k) {
     if (in.robot == "hexapod") {
-      nominal.col(k) << 0.3 * (k / 2 - 1), k % 2 == 0 ? 0.2 : -0.2, -kHeight;
+      const int pair = k / 2;  // hind, middle, fore: x = −0.3, 0, 0.3 m
+      nominal.col(k) << 0.3 * static_cast<double>(pair - 1), k % 2 == 0 ? 0.2 : -0.2, -kHeight;
     } else {
       const double a = 2.0 * std::numbers::pi * k / in.n;
       nominal.col(k) << 0.3 * std::cos(a), 0.3 * std::sin(a), -kHeight;

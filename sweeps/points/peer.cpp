@@ -315,7 +315,8 @@ void draw_trajectory(const contact::Robot& robot, const ParallelInputs& in, long
   for (long long s = 0; s < in.steps; ++s) {
     for (int attempt = 0; attempt < 20; ++attempt) {
       for (int k = 0; k < 6; ++k) {
-        f.q.col(k) << 0.3 * (k / 2 - 1) + rng.uniform(-0.02, 0.02),
+        const int pair = k / 2;  // hind, middle, fore: x = −0.3, 0, 0.3 m
+        f.q.col(k) << 0.3 * static_cast<double>(pair - 1) + rng.uniform(-0.02, 0.02),
             (k % 2 == 0 ? 0.2 : -0.2) + rng.uniform(-0.02, 0.02), draw_height(rng);
       }
       contact::spring_support(robot, f);
