@@ -59,7 +59,7 @@ Frame::Frame(const Robot& robot)
       contact(static_cast<std::size_t>(robot.legs()), 0),
       Fz(Eigen::VectorXd::Zero(robot.legs())),
       Fxy(Eigen::Matrix2Xd::Zero(2, robot.legs())),
-      A(Eigen::MatrixXd::Zero(3, 2 * robot.legs())),
+      A(Eigen::MatrixXd::Zero(3, 2 * static_cast<Eigen::Index>(robot.legs()))),
       work_n(Eigen::VectorXd::Zero(robot.legs())),
       work_2n(Eigen::Matrix2Xd::Zero(2, robot.legs())),
       work_idx(static_cast<std::size_t>(robot.legs()), 0),

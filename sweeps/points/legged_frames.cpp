@@ -440,6 +440,7 @@ Rows<SupportPathRow> run_path(const Point& point) {
     const contact::SupportStep& s = path[i];
     if (i == 0) {
       std::vector<std::pair<double, int>> h;
+      h.reserve(static_cast<std::size_t>(n));
       for (int j = 0; j < n; ++j) {
         h.emplace_back(contact::foot_height(f, j, s.alpha, s.beta, s.z), j);
       }
