@@ -10,5 +10,6 @@ void add_sweep_command(CLI::App& app);      ///< sweep SPEC.toml            (swe
 void add_reproduce_command(CLI::App& app);  ///< reproduce [--quick] [...]  (reproduce_command.cpp)
 void add_model_command(CLI::App& app);      ///< model [--friction] [--in]   (model_command.cpp)
 void add_run_command(CLI::App& app);        ///< run SCENE.toml --out FILE   (run_command.cpp)
+void add_kinds_command(CLI::App& app);      ///< kinds [KIND...] [--json]   (kinds_command.cpp)
 
 }  // namespace slipwalk::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   slipwalk::cli::add_reproduce_command(app);
   slipwalk::cli::add_model_command(app);
   slipwalk::cli::add_run_command(app);
+  slipwalk::cli::add_kinds_command(app);
   try {
     app.parse(argc, argv);
     return 0;

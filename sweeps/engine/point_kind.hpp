@@ -30,6 +30,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -185,5 +186,11 @@ template <class Row>
                                                std::string_view name);
 /// "inchworm_vss|inchworm_convergence|...", for messages.
 [[nodiscard]] std::string point_kind_names(std::span<const PointKind> kinds);
+
+/// The kinds as a user reads them (`slipwalk kinds --json`): an array of {"name", "summary",
+/// "timed", "columns": [{"name", "unit", "timing"}, ...]} in the order given.
+[[nodiscard]] nlohmann::json kinds_to_json(std::span<const PointKind> kinds);
+/// The same as text: per kind its name, summary and columns ("v_ss [m/s]", "wall_s [s, timing]").
+[[nodiscard]] std::string kinds_to_text(std::span<const PointKind> kinds);
 
 }  // namespace slipwalk::sweeps

@@ -204,23 +204,6 @@ std::string utc_now() {
   return buffer;
 }
 
-const PointKind* find_point_kind(std::span<const PointKind> kinds, std::string_view name) {
-  for (const PointKind& k : kinds) {
-    if (k.name == name) {
-      return &k;
-    }
-  }
-  return nullptr;
-}
-
-std::string point_kind_names(std::span<const PointKind> kinds) {
-  std::string out;
-  for (const PointKind& k : kinds) {
-    out += (out.empty() ? "" : "|") + k.name;
-  }
-  return out;
-}
-
 PreparedSweep prepare(Spec spec, std::span<const PointKind> kinds) {
   PreparedSweep s;
   s.kind = find_point_kind(kinds, spec.kind);
