@@ -2,9 +2,9 @@
 
 #include <array>
 #include <chrono>
-#include <ctime>
 #include <utility>
 
+#include "core/clock.hpp"
 #include "core/error.hpp"
 #include "events/exact_event_times.hpp"
 #include "inchworm/backends.hpp"
@@ -28,13 +28,6 @@ constexpr std::array<std::pair<Method, const char*>, 11> kMethods{{
     {Method::kGslMsadams, "gsl_msadams"},
     {Method::kFixedRk4, "fixed_rk4"},
 }};
-
-/// CPU time of the calling thread, s.
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 VssResult from_steady_state(Method method, const SteadyState& s) {
   VssResult r;
@@ -117,7 +110,7 @@ events::BackendOptions backend_options(const VssOptions& opt) {
 
 VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
-  const double cpu_start = thread_cpu_seconds();
+  const double cpu_start = core::thread_cpu_seconds();
   VssResult r;
   try {
     switch (method) {
@@ -151,8 +144,8 @@ VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
     r.converged = false;
     r.message = e.what();
   }
-  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.cpu_s = thread_cpu_seconds() - cpu_start;
+  r.wall_s = core::seconds_since(start);
+  r.cpu_s = core::thread_cpu_seconds() - cpu_start;
   return r;
 }
 

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "core/atomic_file.hpp"
+#include "core/clock.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
@@ -106,7 +107,7 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
                 << " frames (t = " << core::format_double(s.t) << " s)" << std::endl;
     }
   });
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_s = core::seconds_since(start);
   file.commit();
 
   // The provenance sidecar.

@@ -1,20 +1,18 @@
 #pragma once
 // Clocks and order statistics for the timed point kinds: one place, so that every timing in the
 // report is taken and summarised the same way.
-#include <chrono>
 #include <string>
 #include <vector>
 
+#include "core/clock.hpp"
+
 namespace slipwalk::sweeps {
 
-/// The calling thread's CPU time, s: unlike wall time it does not count the time the thread waits
-/// for a core, which on a shared machine is most of the noise.
-[[nodiscard]] double thread_cpu_seconds();
-/// CPU time of the whole process (all threads), s: the work parallel sections did.
-[[nodiscard]] double process_cpu_seconds();
+// The clocks are the library's (core/clock.hpp), so the engine and the library time alike.
+using core::process_cpu_seconds;
+using core::seconds_since;
+using core::thread_cpu_seconds;
 
-/// Wall seconds on the steady clock since `start`.
-[[nodiscard]] double seconds_since(std::chrono::steady_clock::time_point start);
 /// A duration as the logs print it: "12.3 s".
 [[nodiscard]] std::string seconds_text(double seconds);
 
