@@ -53,7 +53,7 @@ struct SweepRun {
 using Job = std::variant<TraceRun, SceneRun, SweepRun>;
 
 /// Runs one job into <data>/<folder>/<name>.csv and its sidecar <name>.json, both atomically.
-/// Throws what the job throws (core::ComputationError for a point function that throws).
+/// Throws what the job throws (core::ComputationError for a point kind that throws).
 JobSummary run_job(const Job& job, const JobContext& context);
 
 /// The trace job alone: <data>/<study>/<name>.csv (inchworm::write_trace) and its sidecar.

@@ -1,5 +1,5 @@
 #pragma once
-// Typed, checked access to a sweep point's inputs, shared by every point function: unknown keys,
+// Typed, checked access to a sweep point's inputs, shared by every point kind: unknown keys,
 // wrong types and values out of range become core::InputError at the spec's file:line:col.
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 
 namespace slipwalk::sweeps {
 
-/// Typed access to a point's inputs; rejects keys the point function does not take.
+/// Typed access to a point's inputs; rejects keys the point kind does not take.
 class Reader {
  public:
   Reader(const Point& p, std::string_view kind, const std::vector<std::string_view>& accepted)

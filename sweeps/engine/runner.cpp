@@ -97,8 +97,8 @@ std::string format_rows(const PointResult& r, const std::vector<bool>& timing_co
   const std::size_t columns = timing_column.size();
   for (const Cells& row : r.rows) {
     if (row.size() != columns) {
-      throw std::logic_error("point function returned " + std::to_string(row.size()) +
-                             " cells for " + std::to_string(columns) + " columns");
+      throw std::logic_error("point kind returned " + std::to_string(row.size()) + " cells for " +
+                             std::to_string(columns) + " columns");
     }
     for (std::size_t i = 0; i < row.size(); ++i) {
       out += i ? "," : "";

@@ -54,7 +54,7 @@ struct PreparedSweep {
 
 /// Runs a prepared sweep. Points of a timed kind run one at a time across every sweep of the
 /// process, whatever `jobs` says (point_kind.hpp). Throws core::InputError when --resume finds a
-/// checkpoint written for another spec, core::ComputationError when a point function throws (the
+/// checkpoint written for another spec, core::ComputationError when a point kind throws (the
 /// checkpoint is kept).
 RunSummary run(const PreparedSweep& sweep, const RunOptions& options);
 

@@ -1,10 +1,10 @@
 #pragma once
 // A sweep spec (TOML, sweeps/README.md) and its expansion into points.
 //
-// A spec names a study (output folder), a name (output file stem) and a kind (the point function,
+// A spec names a study (output folder), a name (output file stem) and a kind (the point kind,
 // point_functions.hpp). Its points are the union of blocks; each block is the cartesian product of
 // its explicit [[points]] (slowest) and its axes in the order they are written in the file (the
-// first axis slowest). Every value remembers where in the file it came from, so a point function
+// first axis slowest). Every value remembers where in the file it came from, so a point kind
 // can report a bad value as `file:line:col`.
 #include <cstddef>
 #include <filesystem>
@@ -20,7 +20,7 @@ namespace slipwalk::sweeps {
 /// One named input of a point: a number or a text, and where in the spec it came from.
 struct Value {
   std::variant<double, std::string> value;
-  bool integer = false;  ///< written as a TOML integer (point functions may require one)
+  bool integer = false;  ///< written as a TOML integer (point kinds may require one)
   std::string origin;    ///< "file:line:col" of the TOML node it came from
 
   [[nodiscard]] bool is_number() const { return std::holds_alternative<double>(value); }

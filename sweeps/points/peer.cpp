@@ -1,4 +1,4 @@
-// Point functions of the speed comparisons of thesis §3.5.3 (Fig. 3.13):
+// Point kinds of the speed comparisons of thesis §3.5.3 (Fig. 3.13):
 //
 //   peer_scaling       Fig. 3.13 a: the cost of one model evaluation (ours: connection::evaluate
 //                      with viscous-Coulomb friction) and of one mj_step of MuJoCo on the same

@@ -1,4 +1,4 @@
-// Point function of the sim-to-sim accuracy comparison of thesis §3.5.4 (Fig. 3.14):
+// Point kind of the sim-to-sim accuracy comparison of thesis §3.5.4 (Fig. 3.14):
 //
 //   peer_bigant  BigANT walking a gait (tripod or metachronal) in our model (viscous-Coulomb and
 //                Coulomb, connection::integrate) and in MuJoCo (lib/peers/mujoco/bigant_peer: a

@@ -1,5 +1,5 @@
 #pragma once
-// Shared by the tests of sweep point functions: a spec's points from the body of a study file,
+// Shared by the tests of sweep point kinds: a spec's points from the body of a study file,
 // a point kind by name, a column's index in its rows (throwing, so that a renamed column fails
 // the test instead of reading past the row), and the first difference between two runs of a
 // point outside its timing columns.

@@ -22,7 +22,7 @@ namespace {
 const PointKind& fn() {
   const PointKind* f = find_point_kind(points::all_kinds(), "legged_cost");
   if (f == nullptr) {
-    throw std::runtime_error("no point function legged_cost");
+    throw std::runtime_error("no point kind legged_cost");
   }
   return *f;
 }

@@ -1,4 +1,4 @@
-// The speed-comparison point functions of §3.5.3 (sweeps/points/peer.cpp): their keys are checked
+// The speed-comparison point kinds of §3.5.3 (sweeps/points/peer.cpp): their keys are checked
 // (bad keys and values name the spec key); both kinds are timed and flag exactly their measured
 // times (ns) as timing columns; parallel_overhead's rows hold what the figure relies on: one row
 // per trajectory and thread count, the same increments and poses on every thread count, the

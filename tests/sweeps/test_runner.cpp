@@ -266,7 +266,7 @@ TEST(Runner, ProgressLines) {
   EXPECT_EQ(quiet.str().find("/48 points"), std::string::npos) << quiet.str();
 }
 
-/// The convergence point function follows the simulation's own arithmetic.
+/// The convergence point kind follows the simulation's own arithmetic.
 TEST(Runner, ConvergenceRowsMatchTheSimulation) {
   const PreparedSweep sweep = prepared(R"(study = "test"
 name = "conv"
