@@ -19,6 +19,7 @@
 #include "sweeps/engine/point_reader.hpp"
 #include "sweeps/engine/runner.hpp"
 #include "sweeps/engine/spec.hpp"
+#include "sweeps/points/families.hpp"
 
 namespace slipwalk::sweeps {
 namespace {
@@ -258,6 +259,37 @@ TEST(PointKind, ATableThatDoesNotStartWithIdIsRefused) {
                    "bad", "", Timed::kNo, [](const Point&) {},
                    [](const Point&) { return Rows<NoIdFirst>{}; }),
                std::logic_error);
+}
+
+// --- the shipped kinds ---------------------------------------------------------------------------
+
+TEST(PointKind, EveryShippedKindHasUniqueColumnsStartingWithId) {
+  std::vector<std::string> names;
+  for (const PointKind& k : points::all_kinds()) {
+    names.push_back(k.name);
+    ASSERT_FALSE(k.columns.empty()) << k.name;
+    EXPECT_EQ(k.columns.front().name, "id") << k.name;
+    std::vector<std::string> columns = k.column_names();
+    std::sort(columns.begin(), columns.end());
+    EXPECT_EQ(std::adjacent_find(columns.begin(), columns.end()), columns.end())
+        << k.name << " names a column twice";
+    EXPECT_FALSE(k.summary.empty()) << k.name;
+  }
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(std::adjacent_find(names.begin(), names.end()), names.end());
+}
+
+TEST(PointKind, EveryTimedKindWritesAtLeastOneTimingColumn) {
+  int timed = 0;
+  for (const PointKind& k : points::all_kinds()) {
+    if (k.timed == Timed::kYes) {
+      ++timed;
+      EXPECT_TRUE(std::any_of(k.columns.begin(), k.columns.end(), [](const ColumnInfo& c) {
+        return c.timing;
+      })) << k.name;
+    }
+  }
+  EXPECT_GE(timed, 1);
 }
 
 // --- timed kinds take turns ----------------------------------------------------------------------
