@@ -1,7 +1,7 @@
 // slipwalk reproduce [--quick] [--jobs N] [--data DIR] [--report DIR] [--studies DIR] [--fresh]
 // [--keep-finished] [--no-report] [STUDY...]: every study's traces, scene runs and sweeps, then
-// the report — the
-// pipeline of sweeps/engine/reproduce.hpp with the options mapped and its summary printed.
+// the report: the pipeline of sweeps/engine/reproduce.hpp with the options mapped and its
+// summary printed.
 #include <iostream>
 #include <memory>
 #include <string>
