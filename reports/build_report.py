@@ -72,10 +72,12 @@ DM_CHOICES = [
     "A cell or point counts as \"stop during swap\" when the body stopped and stuck in either "
     "swap of the limit cycle (in practice the swap after the extension stroke).",
 ]
+EXPLAINED = "differs — explained"
+CAUSE_UNKNOWN = "differs — cause unknown"
 VERDICT_CLASS = {
     "reproduced": "ok",
-    "differs — explained": "explained",
-    "differs — not explained": "bad",
+    EXPLAINED: "explained",
+    CAUSE_UNKNOWN: "unknown",
     "needs data we do not have": "nodata",
     "not measured": "bad",
 }
@@ -248,13 +250,36 @@ def evaluate(claim: dict, values: Values) -> dict:
             if not is_number(ours):
                 raise ValueError(f"claim {cid}: value {keys} is not a number: {ours!r}")
             ok = compare(rule, float(ours), float(target), tol)
-    if ok:
-        res["verdict"] = "reproduced"
-    elif claim.get("explanation"):
-        res["verdict"] = "differs — explained"
-    else:
-        res["verdict"] = "differs — not explained"
+    res["verdict"] = "reproduced" if ok else differs_verdict(claim, values, res)
     return res
+
+
+def check_keys(claim: dict) -> list[str]:
+    """The value keys a claim's `check` names (the result of the check behind its explanation)."""
+    check = claim.get("check")
+    if check is None:
+        return []
+    keys = [check] if isinstance(check, str) else check
+    if not isinstance(keys, list) or not keys or not all(isinstance(k, str) for k in keys):
+        raise ValueError(f"claim {claim.get('id')}: 'check' must be a value key or a list of them")
+    if not claim.get("explanation"):
+        raise ValueError(f"claim {claim.get('id')}: a 'check' needs the 'explanation' it supports")
+    return keys
+
+
+def differs_verdict(claim: dict, values: Values, res: dict) -> str:
+    """A failed comparison is explained only when the explanation names a check that was run and
+    whose result is in the values; otherwise its cause is unknown (the explanation, if any, is a
+    hypothesis)."""
+    keys = check_keys(claim)
+    res["check"] = keys
+    if not keys:
+        return CAUSE_UNKNOWN
+    missing = [k for k in keys if not values.has(k) or values.get(k) is None]
+    if missing:
+        res["reason"] = "the check's value is missing: " + ", ".join(missing)
+        return CAUSE_UNKNOWN
+    return EXPLAINED
 
 
 # ---------------------------------------------------------------------------------------------
@@ -288,6 +313,7 @@ tr.bad td,td.bad{background:#fde8e8}
 .v{display:inline-block;padding:1px 6px;border-radius:3px;font-size:.9em;white-space:nowrap}
 .v.ok{background:#d8f0d8;color:#1d5e1d}
 .v.explained{background:#fff0cc;color:#6b4e00}
+.v.unknown{background:#fbdcc4;color:#7a3d00}
 .v.bad{background:#f7d4d4;color:#7a1515}
 .v.nodata{background:#e2e2f2;color:#333366}
 .small{font-size:.85em;color:#555}
@@ -315,12 +341,17 @@ def claim_rows(claims: list[dict], results: dict, values: Values, short: bool) -
         if cl.get("criterion"):
             notes.append(f"<div class='small'><b>criterion:</b> {html.escape(render(cl['criterion'], values))}</div>")
         if r["verdict"].startswith("differs") and cl.get("explanation"):
-            notes.append(f"<div><b>why:</b> {html.escape(render(cl['explanation'], values))}</div>")
+            label = "why" if r["verdict"] == EXPLAINED else "hypothesis (no check run)"
+            notes.append(f"<div><b>{label}:</b> {html.escape(render(cl['explanation'], values))}</div>")
+        if r["verdict"] == EXPLAINED:
+            shown = "; ".join(f"{k} = {fmt_value(values.get(k))}" for k in r["check"])
+            notes.append(f"<div class='small'><b>check:</b> {html.escape(shown)}</div>")
         if r.get("reason"):
-            notes.append(f"<div><b>not measured:</b> {html.escape(r['reason'])}</div>")
+            label = "not measured" if r["verdict"] == "not measured" else "note"
+            notes.append(f"<div><b>{label}:</b> {html.escape(r['reason'])}</div>")
         if cl.get("note"):
             notes.append(f"<div class='small'>{html.escape(render(cl['note'], values))}</div>")
-        cls = "bad" if r["verdict"] in ("differs — not explained", "not measured") else ""
+        cls = "bad" if r["verdict"] == "not measured" else ""
         if short:
             out.append(f"<tr class='{cls}'><td><a href='#claim-{html.escape(cl['id'])}'>"
                        f"{html.escape(cl['id'])}</a></td><td>{html.escape(thesis_text(cl.get('thesis', '')))}</td>"
@@ -523,7 +554,11 @@ runs of BigANT's tripod; the thesis shows no data for them either.</p>
 </section>
 <section id="ledger"><h2>Claims ledger</h2>
 <p class="small">Every quantitative statement of chapter 2, §2.1–2.5, and of chapter 3, §3.1–3.4 and §3.6. "ours" is
-computed by the scripts from the data; the verdict is computed from the rule in the criterion column.</p>
+computed by the scripts from the data; the verdict is computed from the rule in the criterion column.
+Verdicts: <b>reproduced</b> (the criterion holds); <b>differs — explained</b> (it fails, and the explanation
+names a check that was run, whose result is shown with the entry); <b>differs — cause unknown</b> (it
+fails, and no check has settled why: a stated reason is a hypothesis); <b>needs data we do not have</b>;
+<b>not measured</b> (a value the scripts could not compute).</p>
 <table class="data"><thead><tr><th>id</th><th>where</th><th>statement</th><th>thesis</th><th>ours</th><th>verdict</th><th>criterion, explanation, notes</th></tr></thead><tbody>
 {ledger_rows}
 </tbody></table></section>

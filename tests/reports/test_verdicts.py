@@ -1,0 +1,74 @@
+"""The claims ledger's verdict rule (reports/build_report.py): a failed comparison is "differs —
+explained" only when its explanation names a check whose result is in the values; otherwise the
+cause is unknown. Run by ctest with the interpreter that has Debian's matplotlib."""
+import sys
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "reports"))
+
+import build_report as b  # noqa: E402
+
+
+class FakeValues:
+    """The part of build_report.Values that evaluate() reads: has(key) and get(key)."""
+
+    def __init__(self, d):
+        self.d = d
+
+    def has(self, key):
+        return key in self.d
+
+    def get(self, key, default=None):
+        return self.d.get(key, default)
+
+
+def claim(**fields):
+    base = {"id": "t", "ours": "fig.x", "compare": "at_most", "thesis": 1.0}
+    base.update(fields)
+    return base
+
+
+class VerdictRule(unittest.TestCase):
+    def test_a_passing_comparison_is_reproduced_whatever_else_it_carries(self):
+        r = b.evaluate(claim(explanation="why"), FakeValues({"fig.x": 0.5}))
+        self.assertEqual(r["verdict"], "reproduced")
+
+    def test_a_failure_with_an_explanation_but_no_check_is_cause_unknown(self):
+        r = b.evaluate(claim(explanation="the grid starts too low"), FakeValues({"fig.x": 2.0}))
+        self.assertEqual(r["verdict"], b.CAUSE_UNKNOWN)
+
+    def test_a_failure_without_any_explanation_is_cause_unknown(self):
+        r = b.evaluate(claim(), FakeValues({"fig.x": 2.0}))
+        self.assertEqual(r["verdict"], b.CAUSE_UNKNOWN)
+
+    def test_a_failure_whose_named_check_has_a_value_is_explained(self):
+        values = FakeValues({"fig.x": 2.0, "fig.with_half": 1.0})
+        r = b.evaluate(claim(explanation="eq. 2.9 misses a 1/2", check="fig.with_half"), values)
+        self.assertEqual(r["verdict"], b.EXPLAINED)
+        self.assertEqual(r["check"], ["fig.with_half"])
+
+    def test_a_check_whose_value_is_missing_or_null_does_not_explain(self):
+        for values in ({"fig.x": 2.0}, {"fig.x": 2.0, "fig.check": None}):
+            r = b.evaluate(claim(explanation="why", check=["fig.check"]), FakeValues(values))
+            self.assertEqual(r["verdict"], b.CAUSE_UNKNOWN, values)
+
+    def test_a_check_without_the_explanation_it_supports_is_a_ledger_error(self):
+        with self.assertRaises(ValueError):
+            b.evaluate(claim(check="fig.check"), FakeValues({"fig.x": 2.0, "fig.check": 1.0}))
+
+    def test_a_check_must_name_value_keys(self):
+        with self.assertRaises(ValueError):
+            b.evaluate(claim(explanation="why", check=3), FakeValues({"fig.x": 2.0}))
+
+    def test_the_shipped_ledger_names_only_well_formed_checks(self):
+        import tomllib  # noqa: PLC0415 (3.11+: Debian's python3)
+
+        ledger = tomllib.loads((Path(b.__file__).resolve().parents[1] / "data" / "thesis" /
+                                "claims.toml").read_text())
+        for cl in ledger["claim"]:
+            b.check_keys(cl)  # raises for a malformed check or one without an explanation
+
+
+if __name__ == "__main__":
+    unittest.main()
