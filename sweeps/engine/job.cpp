@@ -41,22 +41,36 @@ nlohmann::json finished_sidecar(const fs::path& csv) {
   return sidecar;
 }
 
+/// The CSV a study entry writes.
+fs::path csv_of(const JobContext& context, const Study& study, const std::string& name) {
+  return context.sweep.data_dir / study.id / (name + ".csv");
+}
+
 /// A summary for a job kept from an earlier run.
 JobSummary kept(std::string study, std::string name, const char* kind, fs::path csv,
                 long long points, long long failed) {
   return {std::move(study), std::move(name), kind, std::move(csv), points, failed, points, 0.0, {}};
 }
 
+/// The sidecar of a study entry's finished output when it was written for the same entry (its
+/// kind and its [[trace]] / [[scene]] table); null otherwise.
+nlohmann::json finished_entry(const JobContext& context, const Study& study,
+                              const std::string& name, const char* sidecar_kind,
+                              const nlohmann::json& source) {
+  nlohmann::json side = finished_sidecar(csv_of(context, study, name));
+  if (side.is_null() || side.value("kind", "") != sidecar_kind ||
+      side.value("spec", nlohmann::json()) != source) {
+    return nullptr;
+  }
+  return side;
+}
+
 JobSummary run_kind(const TraceRun& run, const JobContext& context) {
   const Study& study = *run.study;
   const TraceJob& job = *run.job;
-  if (context.keep_finished) {
-    const fs::path csv = context.sweep.data_dir / study.id / (job.name + ".csv");
-    const nlohmann::json side = finished_sidecar(csv);
-    if (!side.is_null() && side.value("kind", "") == "inchworm_trace" &&
-        side.value("spec", nlohmann::json()) == job.source) {
-      return kept(study.id, job.name, "trace", csv, 1, 0);
-    }
+  if (context.keep_finished &&
+      !finished_entry(context, study, job.name, "inchworm_trace", job.source).is_null()) {
+    return kept(study.id, job.name, "trace", csv_of(context, study, job.name), 1, 0);
   }
   return write_trace_job(study, job, context.sweep.data_dir);
 }
@@ -65,13 +79,10 @@ JobSummary run_kind(const SceneRun& run, const JobContext& context) {
   const Study& study = *run.study;
   const SceneJob& job = *run.job;
   if (context.keep_finished) {
-    const fs::path csv = context.sweep.data_dir / study.id / (job.name + ".csv");
-    const nlohmann::json side = finished_sidecar(csv);
-    if (!side.is_null() && side.value("kind", "") == "scene_run" &&
-        side.value("spec", nlohmann::json()) == job.source &&
-        side.value("quick", !context.quick) == context.quick &&
+    const nlohmann::json side = finished_entry(context, study, job.name, "scene_run", job.source);
+    if (!side.is_null() && side.value("quick", !context.quick) == context.quick &&
         side.value("scene", nlohmann::json()) == scene::to_json(scene_of(job, context.quick))) {
-      return kept(study.id, job.name, "scene", csv, 1, 0);
+      return kept(study.id, job.name, "scene", csv_of(context, study, job.name), 1, 0);
     }
   }
   return write_scene_job(study, job, context.sweep.data_dir, context.quick);

@@ -346,38 +346,37 @@ void run_two_sweeps_at_once(const std::vector<PointKind>& kinds, const std::stri
   other.join();
 }
 
-TEST(TimedPoints, TwoTimedKindsInConcurrentSweepsNeverOverlapInTime) {
+/// The intervals of two recording kinds `a` and `b` (each timed or not, each point taking `hold`)
+/// whose sweeps run at the same time.
+std::vector<Interval> log_of_concurrent_sweeps(const std::string& a, Timed timed_a,
+                                               const std::string& b, Timed timed_b,
+                                               std::chrono::milliseconds hold) {
   std::vector<Interval> log;
   std::mutex log_mutex;
-  const std::vector<PointKind> kinds = {
-      recording_kind("timed_a", Timed::kYes, std::chrono::milliseconds(15), log, log_mutex),
-      recording_kind("timed_b", Timed::kYes, std::chrono::milliseconds(15), log, log_mutex)};
+  const std::vector<PointKind> kinds = {recording_kind(a, timed_a, hold, log, log_mutex),
+                                        recording_kind(b, timed_b, hold, log, log_mutex)};
   const ScratchDir dir;
-  run_two_sweeps_at_once(kinds, "timed_a", "timed_b", dir);
+  run_two_sweeps_at_once(kinds, a, b, dir);
+  return log;
+}
+
+TEST(TimedPoints, TwoTimedKindsInConcurrentSweepsNeverOverlapInTime) {
+  const std::vector<Interval> log = log_of_concurrent_sweeps(
+      "timed_a", Timed::kYes, "timed_b", Timed::kYes, std::chrono::milliseconds(15));
   ASSERT_EQ(log.size(), 16U);
   EXPECT_EQ(overlaps(log), 0);
 }
 
 TEST(TimedPoints, UntimedKindsDoRunSideBySideSoTheCheckAboveCanFail) {
-  std::vector<Interval> log;
-  std::mutex log_mutex;
-  const std::vector<PointKind> kinds = {
-      recording_kind("free_a", Timed::kNo, std::chrono::milliseconds(40), log, log_mutex),
-      recording_kind("free_b", Timed::kNo, std::chrono::milliseconds(40), log, log_mutex)};
-  const ScratchDir dir;
-  run_two_sweeps_at_once(kinds, "free_a", "free_b", dir);
+  const std::vector<Interval> log = log_of_concurrent_sweeps(
+      "free_a", Timed::kNo, "free_b", Timed::kNo, std::chrono::milliseconds(40));
   ASSERT_EQ(log.size(), 16U);
   EXPECT_GT(overlaps(log), 0);
 }
 
 TEST(TimedPoints, ATimedKindDoesNotHoldBackUntimedPoints) {
-  std::vector<Interval> log;
-  std::mutex log_mutex;
-  const std::vector<PointKind> kinds = {
-      recording_kind("timed", Timed::kYes, std::chrono::milliseconds(40), log, log_mutex),
-      recording_kind("free", Timed::kNo, std::chrono::milliseconds(40), log, log_mutex)};
-  const ScratchDir dir;
-  run_two_sweeps_at_once(kinds, "timed", "free", dir);
+  const std::vector<Interval> log = log_of_concurrent_sweeps(
+      "timed", Timed::kYes, "free", Timed::kNo, std::chrono::milliseconds(40));
   std::vector<Interval> timed;
   for (const Interval& i : log) {
     if (i.kind == "timed") {
