@@ -40,7 +40,7 @@ struct ReproduceCommand {
     options.report = !no_report;
     options.report_dir = report;
     options.python = SLIPWALK_PYTHON;
-    options.report_builder = source + "/reports/build_report.py";
+    options.report_builder = source + "/reports/site/build_report.py";
     options.kinds = sweeps::points::all_kinds();
     options.log = &std::cout;
     options.progress = &std::cerr;

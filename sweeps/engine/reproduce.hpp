@@ -45,7 +45,7 @@ struct ReproduceOptions {
   std::filesystem::path python = "/usr/bin/python3";  ///< the interpreter of the builder
   /// The builder: `<python> <builder> --data DATA --out REPORT [--quick]`; when the file does
   /// not exist the report is skipped (ReportOutcome::kNoBuilder).
-  std::filesystem::path report_builder = "reports/build_report.py";
+  std::filesystem::path report_builder = "reports/site/build_report.py";
   std::span<const PointKind> kinds;  ///< the point kinds sweeps may name (required)
   std::ostream* log = nullptr;       ///< a line per study and per job as they finish; null: none
   std::ostream* progress = nullptr;  ///< sweep progress lines and warnings; null: none

@@ -1,13 +1,13 @@
-"""The claims ledger's verdict rule (reports/build_report.py): a failed comparison is "differs —
+"""The claims ledger's verdict rule (reports/site/ledger.py): a failed comparison is "differs —
 explained" only when its explanation names a check whose result is in the values; otherwise the
 cause is unknown. Run by ctest with the interpreter that has Debian's matplotlib."""
 import sys
 import unittest
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "reports"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "reports" / "site"))
 
-import build_report as b  # noqa: E402
+import ledger as b  # noqa: E402
 
 
 class FakeValues:
@@ -64,7 +64,7 @@ class VerdictRule(unittest.TestCase):
     def test_the_shipped_ledger_names_only_well_formed_checks(self):
         import tomllib  # noqa: PLC0415 (3.11+: Debian's python3)
 
-        ledger = tomllib.loads((Path(b.__file__).resolve().parents[1] / "data" / "thesis" /
+        ledger = tomllib.loads((Path(b.__file__).resolve().parents[2] / "data" / "thesis" /
                                 "claims.toml").read_text())
         for cl in ledger["claim"]:
             b.check_keys(cl)  # raises for a malformed check or one without an explanation
