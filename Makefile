@@ -13,7 +13,7 @@ DEBIAN_PACKAGES := cmake g++ make pkg-config git \
   libeigen3-dev libsundials-dev libgsl-dev libboost-dev \
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev \
   libmujoco-dev \
-  python3 python3-matplotlib python3-numpy
+  python3 python3-matplotlib python3-numpy chromium
 
 .PHONY: all deps build test reproduce reproduce-quick bench format format-check tidy clean
 
@@ -45,6 +45,12 @@ reproduce: build
 
 reproduce-quick: build
 	$(BUILD)/bin/slipwalk reproduce --quick
+
+# The built report as a reader sees it, in headless Chromium (reports/site/check_pages.py):
+# images load, nothing is wider than the page, no text below 8 pt; screenshots in reports/out/screens.
+.PHONY: report-check
+report-check: reproduce
+	/usr/bin/python3 reports/site/check_pages.py reports/out
 
 bench: build
 	@for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
