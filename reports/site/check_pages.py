@@ -52,7 +52,10 @@ WAIT_IMAGES_JS = """
 async function waitImages(ms) {
   for (const img of document.images) if (img.loading === 'lazy') img.loading = 'eager';
   const pending = [...document.images].filter(img => !img.complete).map(img =>
-    new Promise(done => { img.addEventListener('load', done); img.addEventListener('error', done); }));
+    new Promise(done => {
+      img.addEventListener('load', done);
+      img.addEventListener('error', done);
+    }));
   await Promise.race([Promise.all(pending), new Promise(done => setTimeout(done, ms))]);
 }
 """
@@ -198,7 +201,11 @@ class Browser:
         self.buf = b""
         self.next_id = 0
         self.events: list[dict] = []
-        self.call("Browser.getVersion")
+        try:
+            self.call("Browser.getVersion", timeout=min(timeout, 30.0))
+        except BrowserError:
+            self.close()
+            raise
 
     @staticmethod
     def _high(fd: int) -> int:
@@ -209,9 +216,10 @@ class Browser:
     def _log_tail(self) -> str:
         self.log.flush()
         self.log.seek(0)
+        # The last lines Chromium logged, less its complaints about the absent D-Bus.
         lines = [ln for ln in self.log.read().decode(errors="replace").splitlines()
-                 if "ERROR" in ln or "FATAL" in ln or "rror" in ln]
-        return "\n    ".join(lines[-5:])
+                 if ln.strip() and "dbus" not in ln]
+        return "".join("\n    " + ln for ln in lines[-5:])
 
     def _read_message(self, deadline: float, waiting_for: str) -> dict:
         while b"\0" not in self.buf:
@@ -221,7 +229,7 @@ class Browser:
                 raise BrowserError(f"Chromium did not answer in time ({waiting_for})")
             chunk = os.read(self.res_r, 1 << 20)
             if not chunk:
-                raise BrowserError("Chromium closed the pipe (exited?)\n    " + self._log_tail())
+                raise BrowserError("Chromium closed the pipe (exited?)" + self._log_tail())
             self.buf += chunk
         raw, self.buf = self.buf.split(b"\0", 1)
         return json.loads(raw)
@@ -269,7 +277,7 @@ class Browser:
                 try:
                     os.write(self.cmd_w, json.dumps({"id": 0, "method": "Browser.close"})
                              .encode() + b"\0")
-                    self.proc.wait(timeout=5)
+                    self.proc.wait(timeout=3)
                 except (OSError, subprocess.TimeoutExpired):
                     pass
             # The browser's helper processes share the session we started it in; none may
@@ -529,8 +537,12 @@ def main(argv: list[str] | None = None) -> int:
     args.screens = args.screens or out / "screens"
     args.screens.mkdir(parents=True, exist_ok=True)
 
+    try:
+        browser = Browser(exe, args.timeout)
+    except (BrowserError, OSError) as e:
+        print(f"check_pages.py: could not start Chromium ({exe}): {e}", file=sys.stderr)
+        return 2
     results = []
-    browser = None
     try:
         for page in pages:
             try:
