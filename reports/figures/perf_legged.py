@@ -93,6 +93,21 @@ def measure(rows: dict) -> dict:
             v[f"fit_{key}_a_ns"] = float(a)
             v[f"fit_{key}_b_ns"] = float(b)
     v["growth_needs_a_over_b"] = float(max(disk_n) - 2 * min(disk_n)) if disk_n else None
+    # §3.6.2: viscous-Coulomb "scales better with the number of contacts" than Coulomb friction:
+    # the growth of the two balances, the cost of one more leg (b), the fixed part in legs (a / b).
+    for key in ("viscous", "coulomb_1e-09"):
+        a, b = v.get(f"fit_{key}_a_ns"), v.get(f"fit_{key}_b_ns")
+        v[f"fit_{key}_a_over_b"] = a / b if a is not None and b else None
+        v[f"fit_growth_{key}"] = ((a + b * max(disk_n)) / (a + b * min(disk_n))
+                                  if a is not None and b is not None else None)
+    gv, gc = v.get("growth_viscous"), v.get("growth_coulomb_1e-09")
+    v["growth_viscous_over_coulomb"] = gv / gc if gv and gc else None
+    bv, bc = v.get("fit_viscous_b_ns"), v.get("fit_coulomb_1e-09_b_ns")
+    v["per_leg_viscous_over_coulomb"] = bv / bc if bv is not None and bc else None
+    v["ratio_coulomb_viscous_disk_min"] = min(
+        (rows[("disk", n, "coulomb_1e-09")]["time_ns"] / rows[("disk", n, "viscous")]["time_ns"]
+         for n in disk_n if ("disk", n, "coulomb_1e-09") in rows and ("disk", n, "viscous") in rows),
+        default=None)
     v["disk_contacts_mean"] = [rows[("disk", n, "viscous")]["contacts_mean"]
                                for n in disk_n if ("disk", n, "viscous") in rows]
     v["disk_down_fraction"] = (float(np.mean([rows[("disk", n, "viscous")]["contacts_mean"] / n

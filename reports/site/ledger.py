@@ -4,6 +4,8 @@ A claim compares `ours` (value keys `script.name`) with the thesis' number by a 
 is computed, never typed (data/thesis/claims.toml, its header states the rules). A failed claim is
 "differs — explained" only when its `check` names values that hold the result of the check behind
 the explanation; otherwise its cause is unknown and the explanation is shown as a hypothesis.
+A claim no study of ours covers yet is "not covered yet" (compare = "not_covered"): its note says
+which study will cover it.
 """
 from __future__ import annotations
 
@@ -17,14 +19,19 @@ import common as c  # noqa: E402
 
 EXPLAINED = "differs — explained"
 CAUSE_UNKNOWN = "differs — cause unknown"
+NEEDS_DATA = "needs data we do not have"
+NOT_COVERED = "not covered yet"
 VERDICT_CLASS = {
     "reproduced": "ok",
     EXPLAINED: "explained",
     CAUSE_UNKNOWN: "unknown",
-    "needs data we do not have": "nodata",
+    NEEDS_DATA: "nodata",
+    NOT_COVERED: "notcovered",
     "not measured": "bad",
 }
-
+# The thesis value of a check of our own (an invariant or cross-check the thesis states no number
+# or statement for); the page lists those apart.
+NOT_GIVEN = "not given"
 
 
 class Values:
@@ -115,7 +122,14 @@ def evaluate(claim: dict, values: Values) -> dict:
         raise ValueError(f"claim {cid}: 'ours' must be a key or a list of keys")
 
     if rule == "needs_data":
-        res["verdict"] = "needs data we do not have"
+        res["verdict"] = NEEDS_DATA
+        return res
+    if rule == "not_covered":
+        # No study of ours covers the claim yet; the note must say which one will.
+        if not claim.get("note"):
+            raise ValueError(f"claim {cid}: compare = 'not_covered' needs a note naming the study "
+                             "that will cover it")
+        res["verdict"] = NOT_COVERED
         return res
     if keys is None:
         raise ValueError(f"claim {cid}: 'ours' is required with compare = '{rule}'")
