@@ -84,11 +84,12 @@ def knob_text(method: str, knob: float) -> str:
 
 
 def figure(plt, data: dict, out) -> None:
-    fig, axs = plt.subplots(2, 2, figsize=(11.0, 8.4), squeeze=False)
+    # 8.4 in at 9.5 pt: readable at the narrow page width too; one legend under the panels
+    fig, axs = plt.subplots(2, 2, figsize=(8.4, 9.4), squeeze=False)
     for col, (robot, n) in enumerate(ROBOTS):
         cv = data.get(robot_key(robot, n), {})
-        for row, (q, qlabel) in enumerate((("v", "body velocity error ‖(Δv_x, Δv_y, LΔω)‖ / V"),
-                                           ("F", "foot force error max_k ‖ΔF_k‖ / (μ_k F_z,k)"))):
+        for row, (q, qlabel) in enumerate((("v", "body velocity error\n‖(Δv_x, Δv_y, LΔω)‖ / V"),
+                                           ("F", "foot force error\nmax_k ‖ΔF_k‖ / (μ_k F_z,k)"))):
             ax = axs[row, col]
             for method, r in cv.items():
                 name, color, marker = STYLE[method]
@@ -100,15 +101,20 @@ def figure(plt, data: dict, out) -> None:
                 ax.loglog(x, med, "--", color=color, marker=marker, mfc="none", ms=4, lw=0.8,
                           label=f"{name}: median")
                 if method != "viscous":
-                    last = None  # label a point only where it is clear of the last label
-                    for xi, yi, k in zip(x, p95, r["knob"]):
+                    # label the knob at the ends of the curve and where the error has moved
+                    # 3 decades since the last label (more would not be readable)
+                    last = None
+                    for i, (xi, yi, k) in enumerate(zip(x, p95, r["knob"])):
                         here = np.log10([xi, yi])
-                        if last is not None and abs(here[0] - last[0]) < 0.12 and \
-                                abs(here[1] - last[1]) < 1.0:
+                        end = i in (0, len(x) - 1)
+                        if last is not None and not end and abs(here[1] - last[1]) < 3.0:
+                            continue
+                        if last is not None and abs(here[1] - last[1]) < 1.2 and \
+                                abs(here[0] - last[0]) < 0.15:
                             continue
                         last = here
                         ax.annotate(short(k), (xi, yi), textcoords="offset points",
-                                    xytext=(4, 3), fontsize=6.5, color=color)
+                                    xytext=(5, 2), color=color)
             xs = np.concatenate([r["time_ns"] / 1000.0 for r in cv.values()]) if cv else []
             if len(xs):
                 ax.set_xlim(np.min(xs) / 1.5, np.max(xs) * 1.8)  # room for the labels
@@ -117,14 +123,13 @@ def figure(plt, data: dict, out) -> None:
             ax.set_xlabel("CPU time per frame [µs]")
             ax.set_ylabel(qlabel)
             ax.set_ylim(FLOOR / 3, 30)
-            ax.set_title(f"{'ab'[col] if row == 0 else 'cd'[col]}) {robot_title(robot, n)}")
-            if row == 0 and col == 0:
-                ax.legend(loc="lower left", fontsize=6.5)
-    fig.suptitle("Work–precision of the friction solvers against a Coulomb solution certified to "
-                 "1e-14 (dotted: 1e-3, 1e-6, 1e-9, 1e-12)\nlabels: ε in m/s (orange) or tol "
-                 f"(blue); errors of 0 drawn at {FLOOR:.0e}; viscous-type forces compared after "
-                 "the best common scale σ", fontsize=9)
-    fig.tight_layout()
+            ax.set_title(f"({'ab'[col] if row == 0 else 'cd'[col]}) {robot_title(robot, n)}")
+    handles, labels = axs[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=2, frameon=False)
+    fig.suptitle("Work–precision of the friction solvers against Coulomb certified to 1e-14\n"
+                 "labels: ε in m/s (orange), tol (blue); dotted: 1e-3, 1e-6, 1e-9, 1e-12; "
+                 f"0 drawn at {FLOOR:.0e}", fontsize=10.5)
+    fig.tight_layout(rect=(0, 1.0 / fig.get_size_inches()[1], 1, 1))
     c.save_figure(fig, out, NAME)
 
 

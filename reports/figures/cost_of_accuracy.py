@@ -10,9 +10,10 @@ estimated remaining error, exact event-driven integration). Errors are |v_ss - c
 closed form; times are the median CPU time of one solve over the spec's repeats, all measured in
 one run on the machine named in the sidecars.
 
-Outputs: OUT/cost_of_accuracy_time.png, OUT/cost_of_accuracy_rhs.png,
-OUT/cost_of_accuracy_sources.png, OUT/cost_of_accuracy_body.html (the page body, wrapped by
-build_report.py into cost_of_accuracy.html), OUT/values/cost_of_accuracy.json.
+Outputs: OUT/cost_of_accuracy_{time,rhs,sources}.png (instant swap) and
+OUT/cost_of_accuracy_{time,rhs,sources}_dm.png (moving Δm), OUT/cost_of_accuracy_body.html (the
+page body, wrapped by build_report.py into cost_of_accuracy.html),
+OUT/values/cost_of_accuracy.json.
 """
 from __future__ import annotations
 
@@ -43,7 +44,8 @@ METHODS = {
     "gsl": ("GSL rk8pd", "C4", "D", "-"),
     "gsl_rkf45": ("GSL rkf45", "C6", "D", "--"),
     "gsl_msadams": ("GSL msadams", "C1", "v", "-."),
-    "fixed_rk4": ("fixed-step RK4, no event location", "C3", "x", ":"),
+    # grey, not red: red marks measured data in the report
+    "fixed_rk4": ("fixed-step RK4, no event location", "0.45", "x", ":"),
 }
 LOCATED = [m for m in METHODS if m not in ("analytic", "fixed_rk4")]
 
@@ -54,7 +56,7 @@ def label(m: str) -> str:
 
 def style(m: str) -> dict:
     _, color, marker, ls = METHODS[m]
-    return {"color": color, "marker": marker, "ls": ls, "ms": 3.5, "lw": 1.0}
+    return {"color": color, "marker": marker, "ls": ls, "ms": 4.5, "lw": 1.2}
 
 
 def read(data: Path, name: str, required: list[str]) -> c.Table:
@@ -199,40 +201,56 @@ def fx(r: float | None) -> str:
 # Figures
 
 
+# Each figure holds one model's cases, two panels a row at the page's width (8.4 in, every text
+# 9.5 pt or more), so a panel is as large as a figure of its own would be on a narrow page.
+FIG_W = 8.4
+PANEL_H = 3.5
+
+
+def model_name(model: str) -> str:
+    return "instant swap" if model == "instant" else "moving Δm (dm model)"
+
+
 def panel_grid(plt, n: int, title: str):
-    cols = 4
-    rows = int(math.ceil((n + 1) / cols))
-    fig, axs = plt.subplots(rows, cols, figsize=(15.5, 3.9 * rows), squeeze=False, sharex=True,
-                            sharey=True)
-    fig.suptitle(title, fontsize=10.5)
-    return fig, axs.ravel()
-
-
-def finish_legend(fig, axs, n: int, handles_from, note: str):
-    import textwrap
-
-    for ax in axs[n:]:
-        ax.axis("off")
-    handles, labels = handles_from.get_legend_handles_labels()
-    seen = {}
-    for h, lab in zip(handles, labels):
-        seen.setdefault(lab, h)
-    axs[n].legend(list(seen.values()), list(seen.keys()), loc="upper left", fontsize=8,
-                  frameon=False, title="method")
-    axs[n].text(0.0, 0.0, textwrap.fill(note, 58), transform=axs[n].transAxes, fontsize=7.2,
-                va="bottom", color="0.25")
-    for ax in axs[:n]:
+    """Two columns; the legend takes the spare cell when n is odd, else a band under the grid.
+    Returns the figure, the panels and the legend's place (an axis or None: under the grid)."""
+    rows = int(math.ceil(n / 2))
+    below = n % 2 == 0
+    # shared axes: the cases' costs compare across panels
+    fig, axs = plt.subplots(rows, 2, figsize=(FIG_W, PANEL_H * rows + (1.6 if below else 0) + 0.5),
+                            squeeze=False, sharex=True, sharey=True)
+    fig.suptitle(title, fontsize=11)
+    axs = axs.ravel()
+    for ax in axs:
         ax.xaxis.set_tick_params(labelbottom=True)
         ax.yaxis.set_tick_params(labelleft=True)
-    fig.tight_layout(rect=(0, 0, 1, 0.96))
+    spare = None if below else axs[n]
+    if spare is not None:
+        spare.axis("off")
+    return fig, axs[:n], spare
 
 
-def work_precision_figure(plt, cases, titles, wp: Runs, fs: Runs, xkey: str, out: Path,
-                          name: str, xlabel: str, note: str):
-    fig, axs = panel_grid(plt, len(cases), "Work–precision: error of v_ss against the closed "
-                          "form" + (" vs CPU time" if xkey == "cpu" else " vs right-hand-side "
-                                    "evaluations"))
-    legend_ax = None
+def place_legend(fig, spare, handles_from: list, title: str | None = None) -> None:
+    handles, labels = [], []
+    for ax in handles_from:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    if spare is not None:
+        spare.legend(handles, labels, loc="center", frameon=False, title=title)
+        fig.tight_layout(rect=(0, 0, 1, 0.97))
+    else:
+        h_in = fig.get_size_inches()[1]
+        fig.legend(handles, labels, loc="lower center", ncol=2, frameon=False, title=title)
+        fig.tight_layout(rect=(0, 1.6 / h_in, 1, 0.97))
+
+
+def work_precision_figure(plt, model: str, cases, titles, wp: Runs, fs: Runs, xkey: str,
+                          out: Path, name: str, xlabel: str):
+    fig, axs, spare = panel_grid(
+        plt, len(cases), f"Work–precision, {model_name(model)}: error of v_ss vs "
+        + ("CPU time" if xkey == "cpu" else "right-hand-side evaluations"))
     for ax, case in zip(axs, cases):
         for m in METHODS:
             cu = curves(fs if m == "fixed_rk4" else wp, case, m)
@@ -250,95 +268,91 @@ def work_precision_figure(plt, cases, titles, wp: Runs, fs: Runs, xkey: str, out
             ax.loglog(x[ok], np.maximum(cu["err"][ok], FLOOR), mfc="none" if hollow else None,
                       label=label(m) + (" (events; no RHS)" if hollow else ""), **st)
         for tg in TARGETS:
-            ax.axhline(tg, color="0.6", ls=":", lw=0.7)
-        ax.set_title(two_lines(titles[case]), fontsize=8.5)
+            ax.axhline(tg, color="0.6", ls=":", lw=0.8)
+        ax.set_title(two_lines(titles[case].split(": ", 1)[1] if model == "instant"
+                               else titles[case]), fontsize=10)
         ax.set_xlabel(xlabel)
         ax.set_ylabel("|v_ss − exact| / exact")
         ax.set_ylim(1e-16, 10)
-        if legend_ax is None and ax.get_lines():
-            legend_ax = ax
-    finish_legend(fig, axs, len(cases), legend_ax or axs[0], note)
+    place_legend(fig, spare, list(axs), title="method")
     c.save_figure(fig, out, name)
 
 
-def sources_figure(plt, rows, titles, integ: Runs, loc: Runs, fs: Runs, stop: Runs, out: Path):
-    fig, axs = plt.subplots(len(rows), 3, figsize=(15.5, 3.9 * len(rows)), squeeze=False)
-    fig.suptitle("The three error sources, separated", fontsize=10)
-    for r, case in enumerate(rows):
-        # (a) integration alone: events at the exact times, target 1e-13
-        ax = axs[r, 0]
-        for m in LOCATED + ["fixed_rk4"]:
-            cu = curves(integ, case, m)
-            if cu is None or not np.any(cu["ok"]):
-                continue
-            ok = cu["ok"]
-            ax.loglog(cu["knob"][ok], np.maximum(cu["err"][ok], FLOOR),
-                      label=label(m) + (" (x: h [s])" if m == "fixed_rk4" else ""), **style(m))
-        ax.set_xlabel("rtol (fixed-step RK4: h in s)")
-        ax.set_ylabel("|v_ss − exact| / exact")
-        ax.set_title(f"integration alone (exact event times)\n{titles[case]}", fontsize=8.5)
-        ax.invert_xaxis()
-        ax.legend(fontsize=6.5, loc="best")
-        # (b) event location: event_tol at rtol 1e-12, target 1e-13; fixed step against h
-        ax = axs[r, 1]
-        for m in ("odeint", "gsl", "gsl_msadams", "cvode"):
-            s = loc.select(case, method=m)
-            if not np.any(s):
-                continue
-            tol = loc.t["event_tol"][s]
-            o = np.argsort(-tol)
-            e = np.maximum(loc.err[s][o], FLOOR)
-            okm = loc.ok[s][o]
-            st = style(m)
-            ax.loglog(tol[o], e, label=label(m), **{**st, "marker": None})
-            ax.loglog(tol[o][okm], e[okm], ls="none", marker=st["marker"], color=st["color"],
-                      ms=3.5)
-            ax.loglog(tol[o][~okm], e[~okm], ls="none", marker=st["marker"], color=st["color"],
-                      mfc="none", ms=5)
-        cu = curves(fs, case, "fixed_rk4")
-        if cu is not None and np.any(cu["ok"]):
-            ok = cu["ok"]
-            ax.loglog(cu["knob"][ok], np.maximum(cu["err"][ok], FLOOR),
-                      label=label("fixed_rk4") + " (x: h)", **style("fixed_rk4"))
-        xs = np.array([1e-12, 1e-1])
-        ax.loglog(xs, xs, color="0.6", lw=0.7, ls=":", label="error = τ (in s)")
-        ax.set_xlabel("event time tolerance event_tol, or fixed step h [s]")
-        ax.set_ylabel("|v_ss − exact| / exact")
-        ax.set_title("event location alone (rtol 1e-12; hollow: no convergence to 1e-13)\n"
-                     + titles[case], fontsize=8.5)
-        ax.invert_xaxis()
-        ax.legend(fontsize=6.5, loc="best")
-        # (c) the stopping rule, exact integration
-        ax = axs[r, 2]
-        for stop_rule, est, lab, color, mk in (
-                ("difference", "running", "thesis: Δ of running mean ≤ target", "C3", "o"),
-                ("difference", "cycle", "thesis rule on the cycle average", "C1", "s"),
-                ("estimate", "cycle", "ours: estimated remaining error ≤ target", "C2", "^")):
-            s = stop.select(case, stop=stop_rule, estimator=est)
-            if not np.any(s):
-                continue
-            tg = stop.t["target"][s]
-            o = np.argsort(-tg)
-            e = np.maximum(stop.err[s][o], FLOOR)
-            okm = stop.ok[s][o]
-            ax.loglog(tg[o], e, color=color, lw=1.0, label=lab)
-            ax.loglog(tg[o][okm], e[okm], ls="none", marker=mk, color=color, ms=3.5)
-            ax.loglog(tg[o][~okm], e[~okm], ls="none", marker=mk, color=color, mfc="none", ms=5)
-        xs = np.array([1e-12, 1e-2])
-        ax.loglog(xs, xs, color="0.6", lw=0.7, ls=":", label="error = target")
-        ax.axvline(THESIS_TARGET, color="0.4", lw=0.8, ls="--")
-        ax.text(THESIS_TARGET, 0.03, " the thesis' 1e-4", fontsize=7, color="0.3",
-                transform=ax.get_xaxis_transform(), ha="right", va="bottom", rotation=90)
-        ax.set_xlabel("stop target")
-        ax.set_ylabel("|v_ss − exact| / exact")
-        ax.set_title("stopping rule alone (exact event-driven integration)\n" + titles[case],
-                     fontsize=8.5)
-        ax.invert_xaxis()
-        ax.legend(fontsize=6.5, loc="lower left", bbox_to_anchor=(0.25, 0.0))
-        for a in axs[r]:
-            a.set_ylim(1e-16, 10)
-    fig.tight_layout(rect=(0, 0, 1, 0.97))
-    c.save_figure(fig, out, NAME + "_sources")
+def sources_figure(plt, case, title, integ: Runs, loc: Runs, fs: Runs, stop: Runs, out: Path,
+                   name: str):
+    """The three error sources of one case, one panel each, stacked; legends right of them."""
+    fig, axs = plt.subplots(3, 1, figsize=(FIG_W, 3.1 * 3 + 0.6))
+    fig.suptitle(f"The three error sources, separated\n{title}", fontsize=11)
+    right = dict(loc="center left", bbox_to_anchor=(1.02, 0.5), frameon=False)
+    # (a) integration alone: events at the exact times, target 1e-13
+    ax = axs[0]
+    for m in LOCATED + ["fixed_rk4"]:
+        cu = curves(integ, case, m)
+        if cu is None or not np.any(cu["ok"]):
+            continue
+        ok = cu["ok"]
+        ax.loglog(cu["knob"][ok], np.maximum(cu["err"][ok], FLOOR),
+                  label=label(m) + (" (x: h [s])" if m == "fixed_rk4" else ""), **style(m))
+    ax.set_xlabel("rtol (fixed-step RK4: h in s)")
+    ax.set_title("(a) integration alone (exact event times)")
+    ax.invert_xaxis()
+    ax.legend(**right)
+    # (b) event location: event_tol at rtol 1e-12, target 1e-13; fixed step against h
+    ax = axs[1]
+    for m in ("odeint", "gsl", "gsl_msadams", "cvode"):
+        s = loc.select(case, method=m)
+        if not np.any(s):
+            continue
+        tol = loc.t["event_tol"][s]
+        o = np.argsort(-tol)
+        e = np.maximum(loc.err[s][o], FLOOR)
+        okm = loc.ok[s][o]
+        st = style(m)
+        ax.loglog(tol[o], e, label=label(m), **{**st, "marker": None})
+        ax.loglog(tol[o][okm], e[okm], ls="none", marker=st["marker"], color=st["color"],
+                  ms=4.5)
+        ax.loglog(tol[o][~okm], e[~okm], ls="none", marker=st["marker"], color=st["color"],
+                  mfc="none", ms=6.5)
+    cu = curves(fs, case, "fixed_rk4")
+    if cu is not None and np.any(cu["ok"]):
+        ok = cu["ok"]
+        ax.loglog(cu["knob"][ok], np.maximum(cu["err"][ok], FLOOR),
+                  label=label("fixed_rk4") + " (x: h)", **style("fixed_rk4"))
+    xs = np.array([1e-12, 1e-1])
+    ax.loglog(xs, xs, color="0.6", lw=0.8, ls=":", label="error = τ (in s)")
+    ax.set_xlabel("event time tolerance event_tol, or fixed step h [s]")
+    ax.set_title("(b) event location alone (rtol 1e-12; hollow: no convergence to 1e-13)")
+    ax.invert_xaxis()
+    ax.legend(**right)
+    # (c) the stopping rule, exact integration
+    ax = axs[2]
+    for stop_rule, est, lab, color, mk in (
+            ("difference", "running", "thesis: Δ of running mean ≤ target", "tab:purple", "o"),
+            ("difference", "cycle", "thesis rule on the cycle average", "tab:orange", "s"),
+            ("estimate", "cycle", "ours: estimated remaining error ≤ target", "tab:green", "^")):
+        s = stop.select(case, stop=stop_rule, estimator=est)
+        if not np.any(s):
+            continue
+        tg = stop.t["target"][s]
+        o = np.argsort(-tg)
+        e = np.maximum(stop.err[s][o], FLOOR)
+        okm = stop.ok[s][o]
+        ax.loglog(tg[o], e, color=color, lw=1.2, label=lab)
+        ax.loglog(tg[o][okm], e[okm], ls="none", marker=mk, color=color, ms=4.5)
+        ax.loglog(tg[o][~okm], e[~okm], ls="none", marker=mk, color=color, mfc="none", ms=6.5)
+    xs = np.array([1e-12, 1e-2])
+    ax.loglog(xs, xs, color="0.6", lw=0.8, ls=":", label="error = target")
+    ax.axvline(THESIS_TARGET, color="0.4", lw=0.9, ls="--", label="the thesis' 1e-4")
+    ax.set_xlabel("stop target")
+    ax.set_title("(c) stopping rule alone (exact event-driven integration)")
+    ax.invert_xaxis()
+    ax.legend(**right)
+    for a in axs:
+        a.set_ylim(1e-16, 10)
+        a.set_ylabel("|v_ss − exact| / exact")
+    # the same axes width in all three panels, the legends in the right 45 %
+    fig.subplots_adjust(left=0.1, right=0.55, top=0.9, bottom=0.06, hspace=0.42)
+    c.save_figure(fig, out, name)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -597,23 +611,28 @@ def main():
                     ratios.append(e / tg)
         values[f"stop_err_over_target_{key}_max"] = max(ratios) if ratios else None
 
-    # ---- figures
-    note = ("Each point: one tolerance (fixed-step RK4: one step h); error against the closed "
-            "form; time: median CPU time of one solve. Dotted: 1e-3, 1e-6, 1e-9, 1e-12. "
-            "Failed runs are not drawn (see the tables).")
-    work_precision_figure(plt, cases, titles, wp, fs, "cpu", args.out, NAME + "_time",
-                          "CPU time per v_ss [s]", note)
-    work_precision_figure(plt, cases, titles, wp, fs, "rhs", args.out, NAME + "_rhs",
-                          "right-hand-side evaluations per v_ss", note +
-                          " The exact piecewise method evaluates no right-hand side: its events "
-                          "are drawn, hollow.")
-    slow = [k for k in cases if roles[k].startswith("slow")]
-    source_rows = slow[:2] if len(slow) >= 2 else cases[:2]
-    sources_figure(plt, source_rows, titles, integ, loc, fs, stop, args.out)
-    values["source_figure_cases"] = [case_id(k) for k in source_rows]
+    # ---- figures: one model per figure (instant swap: NAME_time, NAME_rhs, NAME_sources; moving
+    # Δm: the same names with _dm)
+    figures = []
+    for model, suffix in (("instant", ""), ("dm", "_dm")):
+        mc = [k for k in cases if k[0] == model]
+        if not mc:
+            continue
+        work_precision_figure(plt, model, mc, titles, wp, fs, "cpu", args.out,
+                              NAME + "_time" + suffix, "CPU time per v_ss [s]")
+        work_precision_figure(plt, model, mc, titles, wp, fs, "rhs", args.out,
+                              NAME + "_rhs" + suffix, "right-hand-side evaluations per v_ss")
+        slow = [k for k in mc if roles[k].startswith("slow")]
+        src = slow[0] if slow else mc[0]
+        sources_figure(plt, src, titles[src], integ, loc, fs, stop, args.out,
+                       NAME + "_sources" + suffix)
+        figures.append((model, suffix, src))
+    values["source_figure_cases"] = [case_id(src) for _, _, src in figures]
+    values["figures"] = [NAME + kind + suffix for _, suffix, _ in figures
+                         for kind in ("_time", "_rhs", "_sources")]
 
     body = page_body(values, cases, titles, cheap_table, ratio_table, integ_table, integ_rtols,
-                     stop_table)
+                     stop_table, [(model_name(m), sx) for m, sx, _ in figures])
     c.atomic_write_text(args.out / f"{NAME}_body.html", body)
     c.write_values(args.out, NAME, values)
 
@@ -739,7 +758,17 @@ def method_paragraphs(v: dict, cases) -> list[tuple[str, str]]:
 
 
 def page_body(v: dict, cases, titles, cheap_table, ratio_table, integ_table, integ_rtols,
-              stop_table) -> str:
+              stop_table, figures: list[tuple[str, str]]) -> str:
+    def imgs(kind: str, alt: str) -> str:
+        return "".join(f'<div class="fig wide"><img src="{NAME}_{kind}{sx}.png" '
+                       f'alt="{html.escape(alt)}, {html.escape(model)}"></div>'
+                       for model, sx in figures)
+
+    wp_note = ("<p class='small'>Each point: one tolerance (fixed-step RK4: one step h); error "
+               "against the closed form; time: median CPU time of one solve. Dotted: 1e-3, 1e-6, "
+               "1e-9, 1e-12. Failed runs are not drawn (see the tables). The exact piecewise "
+               "method evaluates no right-hand side: in the second pair of figures its events "
+               "are drawn, hollow.</p>")
     load = v.get("machine_load_average")
     load_txt = (f" (load average {load:.2g} when the sweep started"
                 + ("; other processes competed for the cores: CPU times suffer less from that "
@@ -774,8 +803,9 @@ cycle map). Times are the median thread CPU time of one solve over {reps} repeat
 between methods measured in the same run. <b>Machine:</b> {machine}.</p>
 </section>
 <section id="coa-wp"><h2>Work–precision</h2>
-<div class="fig wide"><img src="{NAME}_time.png" alt="error vs CPU time"></div>
-<div class="fig wide"><img src="{NAME}_rhs.png" alt="error vs right-hand-side evaluations"></div>
+{imgs("time", "error vs CPU time")}
+{imgs("rhs", "error vs right-hand-side evaluations")}
+{wp_note}
 <h3>The cheapest method to reach 1e-3, 1e-6, 1e-9, 1e-12</h3>
 <p class="small">Among the runs that converged with an error at or below the target, the one of
 least CPU time (tolerances are sampled once per decade, so "cheapest" is to within a decade of
@@ -786,7 +816,7 @@ that of the exact piecewise method, both to that target, same run.</p>
 {ratio_table}
 </section>
 <section id="coa-sources"><h2>Three error sources, separated</h2>
-<div class="fig wide"><img src="{NAME}_sources.png" alt="error sources"></div>
+{imgs("sources", "error sources")}
 <p><b>Integration.</b> With the events placed at the exact times of the current numerical state
 (<code>event_times = "exact"</code>) and a stopping target of 1e-13, only the integration error
 is left. Every Runge–Kutta method here, and the fixed-step RK4, reproduces a mode's quadratic

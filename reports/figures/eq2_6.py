@@ -43,11 +43,15 @@ def error_map(ax, mu, logf, err, title, plt):
 
     tri = mtri.Triangulation(mu, logf)
     levels = [0, 0.01, 0.02, 0.05, 0.11, 0.2, 0.5, 1.0, max(2.0, float(err.max()) * 1.01)]
-    cmap = plt.get_cmap("magma_r")
+    # a sequential map without red (red marks measured data in the report)
+    cmap = plt.get_cmap("YlGnBu")
     norm = BoundaryNorm(levels, cmap.N)
     cf = ax.tricontourf(tri, err, levels=levels, cmap=cmap, norm=norm)
-    cs = ax.tricontour(tri, err, levels=[0.05, 0.11], colors=["c", "b"], linewidths=[1.2, 1.2])
-    ax.clabel(cs, fmt={0.05: "5 %", 0.11: "11 %"}, fontsize=7)
+    # the thesis' two numbers (§2.4.1): 5 % and 11 %
+    cs = ax.tricontour(tri, err, levels=[0.05, 0.11], colors=["k", "k"], linewidths=[1.3, 2.4])
+    labels = ax.clabel(cs, fmt={0.05: "5 %", 0.11: "11 %"}, fontsize=10, inline_spacing=8)
+    for lab in labels:
+        lab.set_bbox(dict(fc="white", ec="none", alpha=0.8, pad=0.5))
     ax.set_xlabel("μ")
     ax.set_ylabel("f̃ = F/(μMg)")
     ticks = [1, 2, 5, 10, 20, 50, 100]
@@ -55,8 +59,8 @@ def error_map(ax, mu, logf, err, title, plt):
     ax.set_yticklabels([str(v) for v in ticks])
     ax.set_title(title)
     # the excluded region
-    ax.plot([LOW_MU, LOW_MU], [logf.min(), logf.max()], "w--", lw=0.8)
-    ax.axhline(math.log10(SMALL_F_TILDE), color="w", ls="--", lw=0.8)
+    ax.plot([LOW_MU, LOW_MU], [logf.min(), logf.max()], ls="--", color="0.35", lw=1.2)
+    ax.axhline(math.log10(SMALL_F_TILDE), color="0.35", ls="--", lw=1.2)
     return cf
 
 
@@ -134,7 +138,7 @@ def main():
         "max_rel_error_with_sqrt_2g_Lmax": consistency["sqrt_2g_Lmax"]["max_rel_error_vs_exact"],
     }
 
-    fig, axs = plt.subplots(1, 5, figsize=(13.5, 4.4),
+    fig, axs = plt.subplots(1, 5, figsize=(13.5, 5.2),
                             gridspec_kw={"width_ratios": [1, 1, 0.05, 0.12, 0.95]})
     axs[3].set_visible(False)  # spacer between the colour bar and panel (c)
     axs[2].grid(False)
@@ -145,7 +149,8 @@ def main():
               f"(b) same form, refit to exact: max {err_refit.max():.0%}", plt)
     fig.colorbar(cf, cax=axs[2], label="|eq. 2.6 − exact| / exact")
     ax = axs[4]
-    for m_show, col in ((0.05, "C3"), (0.2, "C1"), (0.5, "C2"), (1.0, "C0")):
+    for m_show, col in ((0.05, "tab:purple"), (0.2, "tab:brown"), (0.5, "tab:green"),
+                        (1.0, "tab:blue")):
         s = np.isclose(mu, mu[np.argmin(np.abs(mu - m_show))])
         o = np.argsort(F[s])
         ax.plot(F[s][o], v[s][o], "-", color=col, lw=1.4, label=f"exact μ = {mu[s][0]:.3g}")
@@ -156,10 +161,11 @@ def main():
     ax.set_xlabel("F [N]")
     ax.set_ylabel("v_ss [m/s]")
     ax.set_title("(c) sections at fixed μ")
-    ax.legend(loc="lower right", fontsize=6.5)
-    fig.suptitle(f"eq. 2.6 vs exact, v = ṽ·sqrt(L_max g); dashed white: excluded region "
-                 f"f̃ < {SMALL_F_TILDE:g} or μ < {LOW_MU:g}", fontsize=9)
-    fig.subplots_adjust(left=0.05, right=0.985, bottom=0.12, top=0.86, wspace=0.32)
+    ax.legend(loc="lower right")
+    fig.suptitle(f"eq. 2.6 vs exact, v = ṽ·√(L_max g); black lines: 5 % (thin) and 11 % (thick) "
+                 f"error; grey dashed: the excluded region f̃ < {SMALL_F_TILDE:g} or "
+                 f"μ < {LOW_MU:g}", fontsize=10.5)
+    fig.subplots_adjust(left=0.05, right=0.985, bottom=0.11, top=0.86, wspace=0.32)
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

@@ -22,6 +22,10 @@ def main():
     args = c.parse_args(__doc__.splitlines()[0])
     plt = c.setup_matplotlib()
     tr = c.read_table(args.data, "fig2_2_trace.csv", COLUMNS)
+    side = c.read_sidecar(tr.path)
+    if side is None or "params" not in side:
+        c.fail(f"{tr.path.with_suffix('.json')}: sidecar with the trace's params missing")
+    params = side["params"]
     t, x, y, com = tr["t"], tr["x"], tr["y"], tr["com"]
     xd, yd, cd = tr["xdot"], tr["ydot"], tr["comdot"]
     ev = tr.str("event")
@@ -79,33 +83,33 @@ def main():
     ref = limit if limit is not None else final
     rel_dev = np.abs(speeds - ref) / abs(ref)
 
-    # ---- figure
-    fig, ax0 = plt.subplots(figsize=(7.2, 4.6))
+    # ---- figure: (a) the trace, (b) the thesis' upper-left inset as a panel of its own, large
+    # enough to read: the last complete cycle from the collision at L_min. Line styles are the
+    # caption's: m dashed, M solid, CoM dotted.
+    F, mu = params["F"], params["mu"]
+    fig, (ax0, ax1) = plt.subplots(2, 1, figsize=(7.2, 8.2), height_ratios=[1.25, 1])
     ax0.plot(t, x, "k--", lw=1.0, label="m (x)")
     ax0.plot(t, y, "k-", lw=1.0, label="M (y)")
-    ax0.plot(t, com, "k:", lw=1.4, label="CoM (mx + My)/(m + M)")
+    ax0.plot(t, com, "k:", lw=1.6, label="CoM (mx + My)/(m + M)")
     ax0.set_xlabel("t [s]")
     ax0.set_ylabel("position [m]")
-    ax0.set_title("Fig. 2.2 — instant-swap inchworm from rest, F = 45 N, μ = 1")
-    ax0.legend(loc="lower right")
-    lo, hi = np.min([x.min(), y.min()]), np.max([x.max(), y.max()])
-    ax0.set_ylim(lo - 0.05 * (hi - lo), hi + 0.55 * (hi - lo))  # room for the inset
-    # inset: the last complete cycle, from the collision at L_min, positions relative to the CoM
+    ax0.set_title(f"(a) from rest, F = {F:g} N, μ = {mu:g}: {len(cycles)} cycles")
+    ax0.legend(loc="upper left")
     i0, i1 = starts[-2], starts[-1]
     sl = slice(i0, i1 + 1)
-    ins = ax0.inset_axes([0.07, 0.60, 0.34, 0.34])
-    ins.plot(t[sl] - t[i0], x[sl] - com[i0], "k--", lw=1.0)
-    ins.plot(t[sl] - t[i0], y[sl] - com[i0], "k-", lw=1.0)
-    ins.plot(t[sl] - t[i0], com[sl] - com[i0], "k:", lw=1.4)
-    ins.set_title(f"cycle {len(cycles)} from the L_min collision", fontsize=7.5)
-    ins.tick_params(labelsize=6.5)
-    ins.set_xlabel("t − t₀ [s]", fontsize=6.5, labelpad=1)
-    ins.set_ylabel("position − c(t₀) [m]", fontsize=6.5, labelpad=1)
+    ax0.axvspan(t[i0], t[i1], color="0.9", zorder=0)
+    ax0.text(0.5 * (t[i0] + t[i1]), ax0.get_ylim()[0], "(b)", ha="center", va="bottom")
+    ax1.plot(t[sl] - t[i0], x[sl] - com[i0], "k--", lw=1.2, label="m (x)")
+    ax1.plot(t[sl] - t[i0], y[sl] - com[i0], "k-", lw=1.2, label="M (y)")
+    ax1.plot(t[sl] - t[i0], com[sl] - com[i0], "k:", lw=1.8, label="CoM")
+    ax1.set_title(f"(b) cycle {len(cycles)}, from the collision at y − x = L_min (shaded in a)")
+    ax1.set_xlabel("t − t₀ [s]")
+    ax1.set_ylabel("position − c(t₀) [m]")
     fig.tight_layout()
     c.save_figure(fig, args.out, NAME)
 
     values = {
-        "F": 45.0, "mu": 1.0,
+        "F": params["F"], "mu": params["mu"],
         "n_cycles": len(cycles),
         "cycle_durations": durations, "cycle_com_advances": advances, "cycle_mean_speeds": speeds,
         "stroke_durations": strokes,

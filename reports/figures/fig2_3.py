@@ -129,7 +129,7 @@ def main():
     ax.set_xlabel("actuator force F [N]")
     ax.set_ylabel("steady-state CoM speed v_ss [m/s]")
     ax.set_title("Fig. 2.3 — v_ss vs F (dotted verticals: regime boundary F = μMg)")
-    ax.legend(loc="upper left", ncol=1)
+    ax.legend(loc="lower right", ncol=1)
     fig.tight_layout()
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

@@ -186,8 +186,25 @@ def main():
         for F in FORCES for k in ("a1", "a5", "a10")]
 
     # --- the figure: 2 rows (F) x 4 columns (condition), every condition in every panel,
-    # the column's one highlighted
-    fig, axes = plt.subplots(2, 4, figsize=(15.5, 9.0), sharex="row", sharey="row")
+    # the column's one highlighted (the thesis' layout); below, per F, the m–m body through the
+    # last swap after an extension stroke, all four conditions in one panel, large enough to
+    # read the thesis' point (α = 1 holds, α = 5, 10 move backward).
+    fig = plt.figure(figsize=(13.5, 12.4))
+    gs = fig.add_gridspec(4, 4, height_ratios=[1, 1, 0.16, 0.9])
+    legend_ax = fig.add_subplot(gs[2, :])
+    legend_ax.axis("off")
+    axes = np.empty((2, 4), object)
+    for r in range(2):
+        for col in range(4):
+            axes[r, col] = fig.add_subplot(gs[r, col], sharex=axes[r, 0] if col else None,
+                                           sharey=axes[r, 0] if col else None)
+            if col:
+                axes[r, col].tick_params(labelleft=False)
+    body_axes = [fig.add_subplot(gs[3, 0:2]), fig.add_subplot(gs[3, 2:4])]
+    body_style = {"instant": dict(color="0.55", ls="-", lw=1.6),
+                  "a1": dict(color="k", ls="-", lw=1.6),
+                  "a5": dict(color="k", ls="--", lw=1.4),
+                  "a10": dict(color="k", ls="-.", lw=1.4)}
     for r, F in enumerate(FORCES):
         t_end = max(traces[(F, k)]["t"][-1] for k in CONDITIONS)
         lo = min(min(derived[(F, k)]["A"].min(), derived[(F, k)]["B"].min()) for k in CONDITIONS)
@@ -212,48 +229,44 @@ def main():
                 if hi:
                     ev = tr.str("event")
                     at = np.isin(ev, ["collision_before", "arrival_before"])
-                    ax.plot(t[at], z[at], "o", ms=3.2, mfc="white", mec="k", zorder=4)
+                    ax.plot(t[at], z[at], "o", ms=3.6, mfc="white", mec="k", zorder=4)
                     bs = np.flatnonzero(ev == "body_stops")
                     sticks = np.array([tr["slide_y"][min(i + 1, tr.n - 1)] == 0 for i in bs],
                                       bool)
                     for pos in (dv["A"], dv["B"]):
-                        ax.plot(t[bs[sticks]], pos[bs[sticks]], "v", ms=3.8, color="k", zorder=4)
-                        ax.plot(t[bs[~sticks]], pos[bs[~sticks]], "v", ms=3.8, mfc="white",
+                        ax.plot(t[bs[sticks]], pos[bs[sticks]], "v", ms=4.2, color="k", zorder=4)
+                        ax.plot(t[bs[~sticks]], pos[bs[~sticks]], "v", ms=4.2, mfc="white",
                                 mec="k", zorder=4)
             ax.set_xlim(0, t_end)
-            ax.set_ylim(lo - 0.04 * (hi_pos - lo), hi_pos + 0.75 * (hi_pos - lo))  # inset room
-            ax.set_title(f"F = {F} N — {LABEL[hk]}"
-                         + (" (one mass moving)" if F == 12 and col == 0 else "")
-                         + (" (two masses moving)" if F == 20 and col == 0 else ""),
-                         fontsize=9)
+            ax.set_ylim(lo - 0.04 * (hi_pos - lo), hi_pos + 0.06 * (hi_pos - lo))
+            ax.set_title(f"F = {F} N — {LABEL[hk]}")
             if r == 1:
                 ax.set_xlabel("t [s] from rest at L_min")
             if col == 0:
-                ax.set_ylabel("position [m]")
-            # inset: the m–m body (mean of the end masses) through the last swap after an
-            # extension, every condition, relative to the collision
-            ins = ax.inset_axes([0.1, 0.63, 0.5, 0.3])
-            for k in order:
-                tr, dv = traces[(F, k)], derived[(F, k)]
-                ev, t = tr.str("event"), tr["t"]
+                ax.set_ylabel(f"position [m], F = {F} N:\n"
+                              + ("one mass moving" if F == 12 else "two masses moving"))
+        # the m–m body (mean of the end masses) through the last swap after an extension,
+        # every condition, relative to the collision that starts it
+        bx = body_axes[r]
+        for k in CONDITIONS:
+            tr, dv = traces[(F, k)], derived[(F, k)]
+            ev, t = tr.str("event"), tr["t"]
+            ext = [i for i in range(tr.n) if ev[i] == "collision_after"
+                   and tr["side"][i] > 0 and (k == "instant" or tr["phase"][i] == 1)]
+            if k == "instant":
                 ext = [i for i in range(tr.n) if ev[i] == "collision_after"
-                       and tr["side"][i] > 0 and (k == "instant" or tr["phase"][i] == 1)]
-                if k == "instant":
-                    ext = [i for i in range(tr.n) if ev[i] == "collision_after"
-                           and tr["side"][i] < 0]
-                i0 = ext[-1] if ext else 0
-                body = 0.5 * (dv["A"] + dv["B"])
-                w = (t >= t[i0] - 0.02) & (t <= t[i0] + 0.2)
-                hi = k == hk
-                ins.plot(t[w] - t[i0], 1e3 * (body[w] - body[i0]), "-",
-                         color="k" if hi else "0.72", lw=1.1 if hi else 0.7,
-                         zorder=3 if hi else 1)
-            ins.axhline(0, color="0.5", lw=0.5)
-            ins.set_xlim(-0.02, 0.2)
-            ins.tick_params(labelsize=6)
-            ins.set_title("m–m body at the last L_max swap", fontsize=7, pad=2)
-            ins.set_xlabel("t − t_collision [s]", fontsize=6, labelpad=1)
-            ins.set_ylabel("Δ position [mm]", fontsize=6, labelpad=1)
+                       and tr["side"][i] < 0]
+            i0 = ext[-1] if ext else 0
+            body = 0.5 * (dv["A"] + dv["B"])
+            w = (t >= t[i0] - 0.02) & (t <= t[i0] + 0.2)
+            bx.plot(t[w] - t[i0], 1e3 * (body[w] - body[i0]), label=LABEL[k], **body_style[k])
+        bx.axhline(0, color="0.5", lw=0.6)
+        bx.axvline(0, color="0.5", lw=0.6)
+        bx.set_xlim(-0.02, 0.2)
+        bx.set_title(f"F = {F} N: the m–m body in the last swap after an extension stroke")
+        bx.set_xlabel("t − t_collision at L_max [s]")
+        bx.set_ylabel("m–m body (mean of the\nend masses) displacement [mm]")
+        bx.legend(loc="upper left")
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], ls="--", color="k", label="end mass while m (x)"),
@@ -265,10 +278,10 @@ def main():
                Line2D([], [], ls="", marker="v", mfc="white", mec="k",
                       label="m–m body stops and turns back"),
                Line2D([], [], ls="-", color="0.72", label="the other conditions")]
-    fig.legend(handles=handles, loc="lower center", ncol=7, frameon=False, fontsize=8)
+    legend_ax.legend(handles=handles, loc="center", ncol=4, frameon=False)
     fig.suptitle("Fig. 2.6 — instant swap vs moving Δm (dm model, F_Δm = αF), μ = 1, four cycles "
-                 "from rest at L_min", fontsize=11)
-    fig.tight_layout(rect=(0, 0.04, 1, 0.96))
+                 "from rest at L_min", fontsize=11.5)
+    fig.tight_layout(rect=(0, 0, 1, 0.97))
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

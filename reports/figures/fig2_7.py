@@ -23,6 +23,8 @@ import common as c  # noqa: E402
 NAME = "fig2_7"
 STUDY = "ch2_dm_swap"
 ALPHAS = (1.0, 5.0, 10.0)
+# the fitted lines: a colour apart from the thesis' black and greys (red is kept for measured data)
+FIT_COLOR = "tab:blue"
 MARKER = {1.0: ".", 5.0: "+", 10.0: "*"}
 # the thesis' styles, with the caption's first "μ = 1 (black)" read as μ = 0.1 (see the ledger)
 STYLE = {0.1: dict(color="k", lw=1.0), 0.6: dict(color="0.45", lw=2.2),
@@ -246,8 +248,8 @@ def main():
     values["slowest_mu_at_common_F"] = min(at, key=at.get)
 
     # --- the figure: (a) the thesis' combined plot; (b–d) one panel per μ with the fits
-    fig = plt.figure(figsize=(13.5, 9.6))
-    gs = fig.add_gridspec(2, 3, height_ratios=[1.25, 1.0])
+    fig = plt.figure(figsize=(13.5, 11.0))
+    gs = fig.add_gridspec(2, 3, height_ratios=[1.2, 1.0])
     ax0 = fig.add_subplot(gs[0, :])
     axs = [fig.add_subplot(gs[1, i]) for i in range(3)]
 
@@ -285,7 +287,8 @@ def main():
                             continue
                         msk = (reg_all[sel][o] == reg) & (sa == stop)
                         xs = np.array([Fa[msk].min(), Fa[msk].max()])
-                        ax.plot(xs, f["k"] * xs + f["b"], "-", color="C3", lw=0.6, alpha=0.7)
+                        ax.plot(xs, f["k"] * xs + f["b"], "-", color=FIT_COLOR, lw=0.9,
+                                alpha=0.8)
         ax.axvline(mu * c.M * c.G, color=st["color"], lw=0.6, ls="-.", alpha=0.8)
 
     for mu in mus:
@@ -317,13 +320,16 @@ def main():
                         parts.append(f"{'I' if reg == 1 else 'II'}{' stop' if stop else ''} "
                                      f"{c.fmt(f['r2'], 4)}")
             lines.append(f"α = {a:g}: " + ", ".join(parts))
+        # the R² of every line, under the panel (inside it would hide points)
         txt = "R² per segment (regime, stop):\n" + "\n".join(lines)
-        ax.text(0.98, 0.03, txt, transform=ax.transAxes, ha="right", va="bottom", fontsize=6.5,
-                bbox=dict(fc="white", ec="0.8", alpha=0.9))
-        ax.set_title(f"({'bcd'[mus.index(mu)]}) μ = {mu:g}: points and per-regime lines (red)")
+        ax.text(0.0, -0.16, txt, transform=ax.transAxes, ha="left", va="top")
+        ax.set_title(f"({'bcd'[mus.index(mu)]}) μ = {mu:g}: points and per-segment lines")
         ax.set_xlabel("F [N]")
         ax.set_ylabel("v_ss [m/s]")
-        ax.legend(loc="upper left", fontsize=6.5)
+        if mu == mus[0]:
+            ax.legend(handles=[Line2D([], [], color=FIT_COLOR, lw=0.9,
+                                      label="least-squares line\nper regime and stop segment")],
+                      loc="upper left")
     fig.tight_layout()
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

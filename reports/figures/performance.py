@@ -24,7 +24,9 @@ TARGET = 1e-10  # relative error the cost table asks for
 FLOOR = 1e-17  # plotted in place of an error of exactly zero
 SIMULATORS = ("analytic", "cvode", "odeint", "gsl")
 MARKERS = {"analytic": "o", "cvode": "s", "odeint": "^", "gsl": "D", "rootfind": "*"}
-COLORS = {"rootfind": "C0", "analytic": "C1", "cvode": "C2", "odeint": "C3", "gsl": "C4"}
+# the cost-of-accuracy page's colours for the same methods (no red: it marks measured data)
+COLORS = {"rootfind": "tab:brown", "analytic": "k", "cvode": "tab:blue", "odeint": "tab:green",
+          "gsl": "tab:purple"}
 
 
 def case_key(F: float, mu: float) -> str:
@@ -50,7 +52,7 @@ def main():
 
     table_rows = []
     all_err_1e6 = []
-    fig, axs = plt.subplots(len(cases), 2, figsize=(9.6, 3.6 * len(cases)), squeeze=False)
+    fig, axs = plt.subplots(len(cases), 2, figsize=(8.4, 3.7 * len(cases) + 0.7), squeeze=False)
     for ci, (F, mu) in enumerate(cases):
         key = case_key(F, mu)
         s_case = np.isclose(t["F"], F) & np.isclose(t["mu"], mu)
@@ -111,7 +113,8 @@ def main():
                     continue
                 ax.loglog(x[ok], np.maximum(pts[ok, 1], FLOOR), "-",
                           marker=MARKERS.get(method, "x"), color=COLORS.get(method),
-                          mfc="none" if hollow else None, ms=4, lw=0.9, label=label)
+                          mfc="none" if hollow else None, ms=7 if method == "rootfind" else 4.5,
+                          lw=0.9, label=label)
         axs[ci, 0].set_xlabel("wall time per solve [s]")
         axs[ci, 1].set_xlabel("right-hand-side evaluations (hollow: steps)")
         for ax in axs[ci]:
@@ -122,15 +125,21 @@ def main():
             ax.axhline(TARGET, color="k", ls=":", lw=0.8)
             ax.set_ylabel("|v_ss − exact| / exact")
             ax.set_title(f"F = {F:g} N, μ = {mu:g}")
-            if ax.get_legend_handles_labels()[0]:
-                ax.legend(loc="best", fontsize=7)
         axs[ci, 0].axvline(values[f"wall_exact_{key}"], color="0.5", lw=0.8, ls="--")
         axs[ci, 0].text(values[f"wall_exact_{key}"], 1e-16, " closed form", color="0.4",
-                        fontsize=7, rotation=90, va="bottom")
+                        rotation=90, va="bottom")
     values["max_error_rtol_1e-06"] = max(all_err_1e6) if all_err_1e6 else None
+    # one legend for all panels, under them
+    from matplotlib.lines import Line2D
+
+    shown = [m for m in dict.fromkeys(("rootfind",) + SIMULATORS) if m in MARKERS]
+    handles = [Line2D([], [], color=COLORS.get(m), marker=MARKERS[m], ms=5, lw=0.9,
+                      label=m + (" (hollow: steps, no RHS evaluations)" if m == "analytic"
+                                 else "")) for m in shown]
+    fig.legend(handles=handles, loc="lower center", ncol=3, frameon=False)
     fig.suptitle(f"Work–precision (dotted: target {TARGET:.0e}; errors of 0 drawn at {FLOOR:.0e})",
-                 fontsize=9)
-    fig.tight_layout()
+                 fontsize=10.5)
+    fig.tight_layout(rect=(0, 0.6 / fig.get_size_inches()[1], 1, 1))
     c.save_figure(fig, args.out, NAME)
 
     out = ["<table class='data'><thead><tr><th>F [N]</th><th>μ</th><th>method</th>"

@@ -10,6 +10,7 @@ F = μ_s M g and αF = μ g (2m + Δm). Output: OUT/regime_map.png, OUT/values/r
 """
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
@@ -21,12 +22,28 @@ import common as c  # noqa: E402
 NAME = "regime_map"
 STUDY = "ch2_dm_swap"
 DM = c.M - c.m
-CLASSES = [  # (regime, stopped) -> label, colour
+CLASSES = [  # (regime, stopped) -> label, colour (blues and greens: red marks measured data)
     ((1, 1), "one mass moving, stop during swap", "#9ecae1"),
     ((1, 0), "one mass moving, no stop", "#2171b5"),
-    ((2, 1), "two masses moving, stop during swap", "#fdae6b"),
-    ((2, 0), "two masses moving, no stop", "#d94801"),
+    ((2, 1), "two masses moving, stop during swap", "#a1d99b"),
+    ((2, 0), "two masses moving, no stop", "#238b45"),
 ]
+
+
+def log_ticks(axis, lo: float, hi: float) -> None:
+    """Labelled ticks on a log axis that may span less than a decade: 1-2-5 per decade, or
+    1-1.5-2-3-5-7 when that leaves fewer than four, printed as plain numbers."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+    decades = range(math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1)
+    for mantissas in ((1, 2, 5), (1, 1.5, 2, 3, 5, 7)):
+        ticks = [mt * 10.0**e for e in decades for mt in mantissas]
+        ticks = [v for v in ticks if lo <= v <= hi]
+        if len(ticks) >= 4:
+            break
+    axis.set_major_locator(FixedLocator(ticks))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
 
 
 def class_index(regime: np.ndarray, stopped: np.ndarray) -> np.ndarray:
@@ -129,7 +146,7 @@ def main():
     from matplotlib.lines import Line2D
 
     cmap = ListedColormap([col for _, _, col in CLASSES])
-    fig, axes = plt.subplots(1, len(mus), figsize=(5.0 * len(mus), 5.4))
+    fig, axes = plt.subplots(1, len(mus), figsize=(min(13.5, 4.5 * len(mus)), 5.6))
     axes = np.atleast_1d(axes)
     for ax, mu in zip(axes, mus):
         sel = sim & np.isclose(mu_all, mu)
@@ -166,6 +183,8 @@ def main():
         ax.set_yscale("log")
         ax.set_xlim(edges(Fs)[0], edges(Fs)[-1])
         ax.set_ylim(edges(As)[0], edges(As)[-1])
+        log_ticks(ax.xaxis, *ax.get_xlim())
+        log_ticks(ax.yaxis, *ax.get_ylim())
         ax.set_xlabel("F [N]")
         ax.set_ylabel("α  (F_Δm = αF)")
         k = f"mu{mu:g}"
@@ -180,10 +199,10 @@ def main():
     if values["mismatch_count"]:
         handles.append(Line2D([], [], ls="", marker="x", color="k",
                               label="simulation ≠ conditions"))
-    fig.legend(handles=handles, loc="lower center", ncol=4, frameon=False, fontsize=8)
+    fig.legend(handles=handles, loc="lower center", ncol=4, frameon=False)
     fig.suptitle("§2.5.2 — motion regimes of the dm model (simulation, colours) and the two "
                  "analytic conditions (lines)", fontsize=11)
-    fig.tight_layout(rect=(0, 0.1, 1, 0.95))
+    fig.tight_layout(rect=(0, 0.12, 1, 0.95))
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

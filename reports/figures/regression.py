@@ -90,7 +90,9 @@ def main():
     }
 
     # ---- figure: (a) the lines, (b) R², (c) k(μ), (d) b(μ)
-    fig, axs = plt.subplots(2, 2, figsize=(9.0, 7.0))
+    # the thesis' fits and threshold in purple (red marks measured data in the report)
+    th_col = "tab:purple"
+    fig, axs = plt.subplots(2, 2, figsize=(8.4, 9.6), height_ratios=[1, 1.05])
     ax = axs[0, 0]
     cmap = plt.get_cmap("viridis")
     for i, mu in enumerate(mus):
@@ -105,7 +107,7 @@ def main():
     ax.set_title("(a) regime II: exact points and per-μ lines")
     ax = axs[0, 1]
     ax.plot(mus, r2, "ko-", ms=3)
-    ax.axhline(float(c.thesis("2.1-linear-R2")), color="r", ls="--", lw=0.8,
+    ax.axhline(float(c.thesis("2.1-linear-R2")), color=th_col, ls="--", lw=1.0,
                label=f"thesis §2.1: R² > {c.thesis('2.1-linear-R2'):g}")
     ax.set_xlabel("μ")
     ax.set_ylabel("R² of v_ss = kF + b")
@@ -113,25 +115,28 @@ def main():
     ax.legend(loc="lower right")
     mm = np.linspace(mus.min(), mus.max(), 200)
     ax = axs[1, 0]
-    ax.plot(mus, k * 1e3, "ko", ms=3, label="k per μ (ours)")
-    ax.plot(mm, (k2 * mm**2 + k0) * 1e3, "b-", lw=1,
-            label=f"ours: k = {k2 * 1e3:.2f}e-3 μ² + {k0 * 1e3:.2f}e-3, R² = {k_r2:.3f}")
-    ax.plot(mm, (q2 * mm**2 + q1 * mm + q0) * 1e3, "g:", lw=1.2,
-            label=f"ours, full quadratic, R² = {q_r2:.4f}")
-    ax.plot(mm, (tk2 * mm**2 + tk0) * 1e3, "r--", lw=1,
+    ax.plot(mus, k * 1e3, "ko", ms=3.5, label="k per μ (ours)")
+    ax.plot(mm, (k2 * mm**2 + k0) * 1e3, "-", color="tab:blue", lw=1.2,
+            label=f"ours: k = {k2 * 1e3:.2f}e-3 μ² + {k0 * 1e3:.2f}e-3\n(R² = {k_r2:.3f})")
+    ax.plot(mm, (q2 * mm**2 + q1 * mm + q0) * 1e3, ":", color="tab:green", lw=1.5,
+            label=f"ours, full quadratic (R² = {q_r2:.4f})")
+    ax.plot(mm, (tk2 * mm**2 + tk0) * 1e3, "--", color=th_col, lw=1.2,
             label=f"thesis: k = {tk2 * 1e3:g}e-3 μ² + {tk0 * 1e3:g}e-3")
     ax.set_xlabel("μ")
     ax.set_ylabel("k [10⁻³ (m/s)/N]")
     ax.set_title("(c) slope k(μ)")
-    ax.legend(loc="best")
+    below = dict(loc="upper center", bbox_to_anchor=(0.5, -0.15))  # under the panel
+    ax.legend(**below)
     ax = axs[1, 1]
-    ax.plot(mus, b, "ko", ms=3, label="b per μ (ours)")
-    ax.plot(mm, b1 * mm + b0, "b-", lw=1, label=f"ours: b = {b1:.3f} μ + {b0:.3f}, R² = {b_r2:.3f}")
-    ax.plot(mm, tb1 * mm + tb0, "r--", lw=1, label=f"thesis: b = {tb1:g} μ + {tb0:g}")
+    ax.plot(mus, b, "ko", ms=3.5, label="b per μ (ours)")
+    ax.plot(mm, b1 * mm + b0, "-", color="tab:blue", lw=1.2,
+            label=f"ours: b = {b1:.3f} μ + {b0:.3f}\n(R² = {b_r2:.3f})")
+    ax.plot(mm, tb1 * mm + tb0, "--", color=th_col, lw=1.2,
+            label=f"thesis: b = {tb1:g} μ + {tb0:g}")
     ax.set_xlabel("μ")
     ax.set_ylabel("b [m/s]")
     ax.set_title("(d) intercept b(μ)")
-    ax.legend(loc="best")
+    ax.legend(**below)
     fig.tight_layout()
     c.save_figure(fig, args.out, NAME)
 

@@ -9,6 +9,7 @@ same μ divided by √μ, which fan out. Output: OUT/scaling.png, OUT/values/sca
 """
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
@@ -18,6 +19,22 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the
 import common as c  # noqa: E402
 
 NAME = "scaling"
+
+
+def log_ticks(axis, lo: float, hi: float) -> None:
+    """Labelled ticks on a log axis, also one spanning about a decade: 1-2-5 per decade, or
+    1-1.5-2-3-5-7 when that leaves fewer than four, printed as plain numbers."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+    decades = range(math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1)
+    for mantissas in ((1, 2, 5), (1, 1.5, 2, 3, 5, 7)):
+        ticks = [mt * 10.0**e for e in decades for mt in mantissas]
+        ticks = [v for v in ticks if lo <= v <= hi]
+        if len(ticks) >= 4:
+            break
+    axis.set_major_locator(FixedLocator(ticks))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
 
 
 def main():
@@ -57,30 +74,36 @@ def main():
         "eq2_6_max_rel_spread": float(max(eq_spread)) if eq_spread else None,
     }
 
-    fig, axs = plt.subplots(1, 2, figsize=(11, 4.2))
-    for m_, col in zip(mus, ["C3", "C1", "C2", "C4", "C0"]):
+    # (a) above (b), each the page's full width; one colour per μ along viridis (no red: red
+    # marks measured data in the report)
+    fig, axs = plt.subplots(2, 1, figsize=(7.2, 9.0))
+    colors = plt.cm.viridis(np.linspace(0.0, 0.85, len(mus)))
+    for i, (m_, col) in enumerate(zip(mus, colors)):
         s = np.isclose(mu, m_)
         o = np.argsort(ft[s])
-        axs[0].plot(ft[s][o], v[s][o], "o-", ms=2.5, lw=1, color=col, label=f"μ = {m_:g}")
-        axs[1].plot(ft[s][o], h[s][o], "o", ms=3.5 - 0.4 * list(mus).index(m_), color=col,
+        axs[0].plot(ft[s][o], v[s][o], "o-", ms=3, lw=1.1, color=col, label=f"μ = {m_:g}")
+        axs[1].plot(ft[s][o], h[s][o], "o", ms=max(2.5, 6.5 - 1.0 * i), color=col,
                     label=f"exact, μ = {m_:g}")
         r2 = s & regime2
         o2 = np.argsort(ft[r2])
-        axs[1].plot(ft[r2][o2], eq_h[r2][o2], "--", lw=0.9, color=col)
-    axs[1].plot([], [], "k--", lw=0.9, label="eq. 2.6 / √μ (1 < f̃ ≤ 5/μ)")
+        axs[1].plot(ft[r2][o2], eq_h[r2][o2], "--", lw=1.1, color=col)
+    axs[1].plot([], [], "k--", lw=1.1, label="eq. 2.6 / √μ (1 < f̃ ≤ 5/μ)")
     axs[0].set_xscale("log")
     axs[0].set_xlabel("f̃ = F/(μMg)")
     axs[0].set_ylabel("v_ss [m/s]")
     axs[0].set_title("(a) v_ss: one curve per μ")
-    axs[0].legend(fontsize=7)
+    axs[0].legend(loc="upper left")
     axs[1].set_xscale("log")
     axs[1].set_yscale("log")
     axs[1].set_xlabel("f̃ = F/(μMg)")
     axs[1].set_ylabel("v_ss / √(μ L_max g)")
     spread = values["collapse_max_rel_spread"]
-    axs[1].set_title(f"(b) collapse: max spread over μ {spread:.1e}" if spread is not None
-                     else "(b) collapse")
-    axs[1].legend(fontsize=7)
+    axs[1].set_title(f"(b) collapse: the μ curves agree to {spread:.1e} (largest spread)"
+                     if spread is not None else "(b) collapse")
+    axs[1].legend(loc="lower right")
+    for ax in axs:
+        log_ticks(ax.xaxis, *ax.get_xlim())
+    log_ticks(axs[1].yaxis, *axs[1].get_ylim())
     fig.tight_layout()
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

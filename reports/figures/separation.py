@@ -145,7 +145,9 @@ def main():
                 values[f"cycles_to_{tkey(tol)}_{nm}_{key}"] = stays
 
     # ---- figure
-    fig, axs = plt.subplots(2, 2, figsize=(9.6, 7.4))
+    from matplotlib.lines import Line2D
+
+    fig, axs = plt.subplots(2, 2, figsize=(8.4, 10.2))
     ax = axs[0, 0]
     mus = sorted({round(float(v), 12) for v in t["mu"][ex]}, reverse=True)
     for i, mu in enumerate(mus):
@@ -162,8 +164,10 @@ def main():
     ax.set_xlabel("F [N]")
     ax.set_ylabel("v_ss [m/s]")
     ax.set_title("(a) thesis protocol vs exact (cf. Fig. 2.3)")
-    ax.legend(loc="lower right")
-    colors = {1e-4: "C3", 1e-5: "C1", 1e-6: "C2"}
+    ax.legend(loc="upper left")
+    # colour: the stop threshold; marker: μ (filled μ = 1, hollow μ = 0.2); no red, which marks
+    # measured data in the report
+    colors = {1e-4: "tab:purple", 1e-5: "tab:blue", 1e-6: "tab:green"}
     for ax, est, title in ((axs[0, 1], "running", "(b) running mean from rest"),
                            (axs[1, 0], "cycle", "(c) last-cycle average")):
         for tau in taus(est):
@@ -171,25 +175,39 @@ def main():
             for i, mu in enumerate(mus):
                 sm = np.isclose(p["mu"], mu)
                 ax.semilogy(p["F"][sm], np.maximum(np.abs(p["gap"][sm]), 1e-17),
-                            "o" if i == 0 else "s", ms=3.5, color=colors.get(tau, "C0"),
-                            mfc=None if i == 0 else "none",
-                            label=f"stop {tau:.0e}" + (f", μ = {mu:g}" if len(mus) > 1 else ""))
-            ax.axhline(tau, color=colors.get(tau, "C0"), lw=0.6, ls=":")
+                            "o" if i == 0 else "s", ms=4, color=colors.get(tau, "C0"),
+                            mfc=None if i == 0 else "none")
+            ax.axhline(tau, color=colors.get(tau, "C0"), lw=0.8, ls=":")
         if est == "cycle":
             for tau, (Fo, go) in ours_pts.items():
-                ax.semilogy(Fo, np.maximum(go, 1e-17), "+", ms=4, color=colors.get(tau, "C0"),
-                            alpha=0.6, label=f"ours: estimated-error stop {tau:.0e}")
+                ax.semilogy(Fo, np.maximum(go, 1e-17), "+", ms=5, color=colors.get(tau, "C0"),
+                            alpha=0.7)
         ax.set_xlabel("F [N]")
         ax.set_ylabel("|v − exact| / exact")
-        ax.set_title(title + ", consecutive-difference stop")
-        ax.legend(loc="best", ncol=2, fontsize=6.5)
+        ax.set_title(title)
+        if est == "running":
+            lo, hi = ax.get_ylim()
+            ax.set_ylim(lo / 10, hi)  # room for the legend below the points
+        stops = [Line2D([], [], color=colors[tau], ls=":", marker="o", ms=4,
+                        label=f"stop {tau:.0e}") for tau in taus(est) if tau in colors]
+        marks = [Line2D([], [], color="0.3", ls="", marker="o" if i == 0 else "s", ms=4,
+                        mfc=None if i == 0 else "none", label=f"thesis rule, μ = {mu:g}")
+                 for i, mu in enumerate(mus)]
+        if est == "cycle":
+            marks.append(Line2D([], [], color="0.3", ls="", marker="+", ms=5,
+                                label="ours: estimated-error stop"))
+        # one legend: thresholds in the first column, markers in the second; (c) is full of
+        # points, so its legend goes under the panel
+        where = (dict(loc="lower center") if est == "running" else
+                 dict(loc="upper center", bbox_to_anchor=(0.5, -0.13)))
+        ax.legend(handles=stops + marks, ncol=2, **where)
     ax = axs[1, 1]
     for j, ((F, mu), (n, ec, er)) in enumerate(conv_curves.items()):
         col = f"C{j}"
-        ax.loglog(n, np.maximum(er, 1e-17), "-", color=col, lw=1.2,
+        ax.loglog(n, np.maximum(er, 1e-17), "-", color=col, lw=1.4,
                   label=f"running mean, F = {F:g} N, μ = {mu:g}")
-        ax.loglog(n, np.maximum(ec, 1e-17), "--", color=col, lw=1.0,
-                  label=f"last-cycle average, F = {F:g} N, μ = {mu:g}")
+        ax.loglog(n, np.maximum(ec, 1e-17), "--", color=col, lw=1.2,
+                  label=f"last cycle, F = {F:g} N, μ = {mu:g}")
     nn = np.array([1.0, max(n.max() for n, _, _ in conv_curves.values())])
     e0 = max(er[0] for _, _, er in conv_curves.values())
     ax.loglog(nn, e0 / nn, "k:", lw=0.8, label="∝ 1/N")
@@ -197,7 +215,7 @@ def main():
     ax.set_xlabel("cycles N")
     ax.set_ylabel("relative error vs exact")
     ax.set_title("(d) convergence from rest")
-    ax.legend(loc="lower left", fontsize=6.5)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13))
     fig.tight_layout()
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
