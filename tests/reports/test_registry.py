@@ -3,6 +3,7 @@ the builder makes bites on a small synthetic project (a temporary folder with a 
 pages, ledger, data and figure scripts), and the shipped registry agrees with reports/figures/.
 Run by ctest with the interpreter that has Debian's matplotlib and python3-markdown."""
 import json
+import re
 import subprocess
 import sys
 import tempfile
@@ -305,6 +306,43 @@ class ShippedRegistry(unittest.TestCase):
         self.assertEqual(reg.check_tables(self.registry), [])
         self.assertEqual(reg.check_claim_ids(self.registry, ledger.get("claim", []),
                                              "claims.toml"), [])
+
+
+class VerdictCounts(unittest.TestCase):
+    """The summary's table: chapters from each claim's section, checks of our own apart, and a
+    column for every verdict (one the ledger does not list yet included)."""
+
+    def test_chapters_own_checks_and_any_verdict(self):
+        import pages  # noqa: PLC0415 (needs python3-markdown)
+
+        registry = reg.Registry(Path("figures.toml"), "t",
+                                [reg.Page("index", "Summary", "Summary", "index.md"),
+                                 reg.Page("ch5", "Chapter 5", "Chapter 5", "ch5.md")], [])
+        claims = [{"id": "a", "section": "§5.2.1, Fig. 5.2", "thesis": 1.0},
+                  {"id": "b", "section": "§3.5.1", "thesis": 1.0},
+                  {"id": "c", "section": "§5.2.1", "thesis": "not given"},
+                  {"id": "d", "section": "§4.2", "thesis": 2.0}]
+        results = {"a": {"verdict": "reproduced"}, "b": {"verdict": "reproduced"},
+                   "c": {"verdict": "reproduced"}, "d": {"verdict": "not covered yet"}}
+        b = pages.Build(registry=registry, claims=claims, results=results, values=None,
+                        staging=Path("."), ran=set(), data=Path("data"), data_name="data",
+                        repo=REPO, script_times={}, quick=False)
+        html = pages.verdicts_table(b)
+        def text(cell):
+            return re.sub(r"<[^>]*>", "", cell).strip()
+
+        cells = {}
+        for row in html.split("<tr")[2:]:  # after the head
+            head, _, rest = row.partition("</th>")
+            cells[text(head.split("<th>", 1)[1])] = [text(c) for c in rest.split("</td>")[:-1]]
+        verdicts = b.verdicts()
+        self.assertIn("not covered yet", verdicts)
+        col = {v: i for i, v in enumerate(verdicts)}
+        self.assertEqual(cells["Chapter 5"][col["reproduced"]], "1")  # §5.2 in chapter 5
+        self.assertEqual(cells["Chapter 3"][col["reproduced"]], "1")
+        self.assertEqual(cells["Chapter 4"][col["not covered yet"]], "1")
+        self.assertEqual(cells["Checks of our own"][col["reproduced"]], "1")
+        self.assertEqual(cells["All"][-1], "4")
 
 
 class Markers(unittest.TestCase):
