@@ -9,12 +9,18 @@ stall.csv (kind stall_slope: the bisection's probes, both laws).
 Output: OUT/fig5_2.png, OUT/values/fig5_2.json.
 
 Panels: (a) the Coulomb run seen from the side, in the vertical plane through the uphill
-direction: the slope (gray), the body centre (red), the toes of FL, ML, HL (blue, orange,
-purple; stance: stars, swing: lines), as in the thesis; (b) the viscous-Coulomb run, which
-creeps downhill; (c) progress per cycle against the slope for both laws with the stall slopes
-found by bisection and their closed forms: Coulomb holds its stance feet up to tan σ = μ; the
+direction: the slope (gray), the body centre (black; the thesis draws it red, a colour the
+report keeps for measured data), the toes of FL, ML, HL (blue, orange, purple; stance: stars,
+swing: lines), as in the thesis; (b) the viscous-Coulomb run, which creeps downhill; (c) progress
+per cycle against the slope for both laws with the stall slopes found by bisection and their
+closed forms: Coulomb holds its stance feet up to tan σ = μ; the
 viscous ansatz drifts at tan σ / μ (m/s) whatever the gait, so it stalls at tan σ = μ p₀ / T
 (p₀ the flat progress per cycle, T the period).
+
+What the thesis' figure shows (its caption: "a trajectory of simulated BigAnt robot moving up 17°
+slope") is read as a climb: uphill progress along the plane in every gait cycle, no slide back
+downhill by more than a tenth of the flat stride, and a body height above the plane without
+jumps of more than a centimetre from one frame to the next.
 """
 from __future__ import annotations
 
@@ -27,19 +33,23 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
 import common as c  # noqa: E402
+import robots as rb  # noqa: E402
 
 NAME = "fig5_2"
 STUDY = "ch5_terrain"
 LEGS = {"FL": "tab:blue", "ML": "tab:orange", "HL": "tab:purple"}
-BODY = "tab:red"
-LAW_COLOR = {"viscous": "tab:orange", "coulomb": "tab:blue"}
+BODY = "black"
+LAW_COLOR = {"viscous": rb.VISCOUS, "coulomb": rb.COULOMB}
+LAW_NAME = {"viscous": "viscous-Coulomb", "coulomb": "Coulomb"}
+BACKSLIDE_LIMIT = 0.1  # of the flat progress per cycle
+JUMP_LIMIT = 0.01      # m, of the body's height above the plane, per frame
 
 
 def load_run(data, name):
     path = data / STUDY / f"{name}.csv"
     if not path.is_file():
         c.fail(f"{path}: input file missing (run `slipwalk reproduce {STUDY}` to produce it)")
-    cols = ["t", "x", "y", "theta", "bx", "by", "bz"]
+    cols = ["t", "x", "y", "theta", "z", "bx", "by", "bz"]
     for leg in LEGS:
         cols += [f"px_{leg}", f"pz_{leg}", f"contact_{leg}"]
     t = c.Table(path, cols)
@@ -48,6 +58,24 @@ def load_run(data, name):
     side = path.with_suffix(".json")
     meta = json.loads(side.read_text()) if side.is_file() else {}
     return t, meta
+
+
+def climb(t, meta, stride: float) -> dict:
+    """What the criterion measures on one run: uphill progress along the plane in each whole
+    gait cycle, the largest slide back downhill behind the farthest point reached, and the
+    largest frame-to-frame change of the body's height above the plane (column z)."""
+    scene = meta.get("scene", {})
+    period = 1.0 / float(scene.get("gait", {}).get("frequency", 0.1))
+    psi = np.radians(float(scene.get("terrain", {}).get("heading_deg", 0.0)))
+    s = t["x"] * np.cos(psi) + t["y"] * np.sin(psi)  # uphill, in the plane's coordinates
+    n = int(np.floor(t["t"][-1] / period + 1e-9))
+    prog = np.diff(np.interp(np.arange(n + 1) * period, t["t"], s))
+    back = float(np.max(np.maximum.accumulate(s) - s))
+    jump = float(np.max(np.abs(np.diff(t["z"]))))
+    return {"cycle_progress_min_m": float(np.min(prog)), "max_backslide_m": back,
+            "max_backslide_rel_stride": back / stride, "max_height_jump_m": jump,
+            "climbs_like_thesis": bool(np.min(prog) > 0 and back <= BACKSLIDE_LIMIT * stride
+                                       and jump <= JUMP_LIMIT)}
 
 
 def side_view(ax, t, meta, title):
@@ -64,12 +92,12 @@ def side_view(ax, t, meta, title):
         swing = np.where(on, np.nan, pz)
         ax.plot(px, swing, color=col, lw=0.8)
         idx = np.flatnonzero(on)[::25]
-        ax.plot(px[idx], pz[idx], "*", color=col, ms=4, label=f"{leg} (stance *, swing —)")
+        ax.plot(px[idx], pz[idx], "*", color=col, ms=5, label=f"{leg} toe (stance *, swing —)")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("horizontal distance uphill [m]")
     ax.set_ylabel("height [m]")
     ax.set_title(title)
-    ax.legend(fontsize=6.5, loc="upper left")
+    ax.legend(loc="upper left")
 
 
 def main():
@@ -88,12 +116,16 @@ def main():
     period = 1.0 / float(coul_meta.get("scene", {}).get("gait", {}).get("frequency", 0.1))
     mu = 1.0  # BigANT's μ (robots/bigant.hpp), the same in every run here
 
+    sigma_deg = float(coul_meta.get("scene", {}).get("terrain", {}).get("angle_deg", 17.0))
+    cycles = int(np.floor(coul["t"][-1] / period + 1e-9))
+
     fig = plt.figure(figsize=(13, 9))
-    gs = fig.add_gridspec(2, 2, height_ratios=[1.1, 1], hspace=0.3, wspace=0.2)
+    gs = fig.add_gridspec(2, 2, height_ratios=[1.1, 1], hspace=0.3, wspace=0.2,
+                          left=0.06, right=0.98, top=0.92, bottom=0.07)
     side_view(fig.add_subplot(gs[0, 0]), coul, coul_meta,
-              "(a) Coulomb friction: up 17°, three cycles at 0.1 Hz")
+              f"(a) Coulomb friction: up {sigma_deg:g}°, {cycles} cycles at {1 / period:g} Hz")
     side_view(fig.add_subplot(gs[0, 1]), visc, visc_meta,
-              "(b) viscous-Coulomb ansatz: creeps downhill at tan σ/μ m/s")
+              "(b) viscous-Coulomb ansatz: slides downhill at tan σ/μ m/s")
 
     ax = fig.add_subplot(gs[1, :])
     law = prog.str("law")
@@ -105,19 +137,24 @@ def main():
         a, p = a[order], p[order]
         slid = prog["sliding_frames"][on][order] > 0
         ax.plot(a[~slid], p[~slid], "o-", color=LAW_COLOR[name], ms=3,
-                label=f"{name}: progress per cycle")
+                label=f"{LAW_NAME[name]}: progress per cycle")
         if slid.any():
             ax.plot(a[slid], np.zeros(slid.sum()), "x", color=LAW_COLOR[name], ms=7,
-                    label=f"{name}: slides (no quasi-static balance)")
+                    label=f"{LAW_NAME[name]}: slides (no quasi-static balance)")
         s_on = stall.str("law") == name
         if s_on.any():
             s_deg = float(stall["stall_deg"][s_on][0])
             values[f"stall_{name}_deg"] = s_deg
             ax.axvline(s_deg, color=LAW_COLOR[name], ls="--", lw=1,
-                       label=f"{name}: stall {s_deg:.3f}° (bisection)")
+                       label=f"{LAW_NAME[name]}: stall {s_deg:.3f}° (bisection)")
         flat = p[a == 0]
         if flat.size:
             values[f"flat_progress_{name}_m"] = float(flat[0])
+        if name == "viscous" and flat.size:
+            # The ansatz's drift tan σ/μ (m/s) over a period, against the flat progress p₀.
+            sig = np.linspace(0.0, a.max(), 50)
+            ax.plot(sig, flat[0] - period * np.tan(np.radians(sig)) / mu, ":", color="black",
+                    lw=1.5, label="viscous-Coulomb closed form p₀ − T tan σ/μ")
         at17 = p[np.isclose(a, 17.0)]
         if at17.size:
             values[f"progress17_{name}_m"] = float(at17[0])
@@ -126,7 +163,8 @@ def main():
     ax.set_ylabel("uphill progress per gait cycle [m]")
     ax.set_ylim(-0.5, 0.35)
     ax.set_title("(c) progress per cycle against the slope, stall slopes by bisection")
-    ax.legend(fontsize=7, loc="lower left")
+    # Lower centre: below the Coulomb curve, right of the viscous one, left of the stall line.
+    ax.legend(loc="lower center", bbox_to_anchor=(0.5, 0.02))
 
     # Closed forms: Coulomb holds up to tan σ = μ; the viscous drift tan σ/μ (m/s) over a period T
     # cancels the flat progress p₀ at tan σ = μ p₀ / T.
@@ -140,8 +178,14 @@ def main():
     if "stall_viscous_deg" in values and "viscous_stall_closed_form_deg" in values:
         values["viscous_stall_minus_closed_form_deg"] = (values["stall_viscous_deg"]
                                                          - values["viscous_stall_closed_form_deg"])
-    values["coulomb_climbs_17"] = bool(coul["x"][-1] > coul["x"][0])
-    values["viscous_climbs_17"] = bool(visc["x"][-1] > visc["x"][0])
+    for name, (run, meta) in {"coulomb": (coul, coul_meta), "viscous": (visc, visc_meta)}.items():
+        stride = values.get(f"flat_progress_{name}_m")
+        if not stride:
+            c.fail(f"{args.data / STUDY / 'progress.csv'}: no flat (0°) progress for {name}")
+        for key, v in climb(run, meta, stride).items():
+            values[f"{name}_{key}"] = v
+    values["backslide_limit_rel_stride"] = BACKSLIDE_LIMIT
+    values["jump_limit_m"] = JUMP_LIMIT
     values["coulomb_uphill_m"] = float(coul["x"][-1] - coul["x"][0])
     values["viscous_uphill_m"] = float(visc["x"][-1] - visc["x"][0])
     values["coulomb_height_gain_m"] = float(coul["bz"][-1] - coul["bz"][0])
