@@ -34,14 +34,14 @@ def main():
         for j, (col, title) in enumerate((("vx", "heading velocity [m/s]"),
                                           ("vy", "side velocity [m/s]"))):
             a = axes[i, j]
-            a.plot(t, r[col], color=rb.COULOMB, lw=0.9)
+            a.plot(t, r[col], color=c.ESTIMATE, lw=0.9)
             a.set_ylim(-vlim, vlim)
             a.set_title(f"{label}: {title}")
         a = axes[i, 2]
-        a.plot(t, np.degrees(r["omega"]), color=rb.COULOMB, lw=0.9)
+        a.plot(t, np.degrees(r["omega"]), color=c.ESTIMATE, lw=0.9)
         a.set_title(f"{label}: turning rate [deg/s]")
         a = axes[i, 3]
-        a.plot(r["x"], r["y"], color=rb.COULOMB, lw=1.2)
+        a.plot(r["x"], r["y"], color=c.ESTIMATE, lw=1.2)
         a.plot(r["x"][[0, -1]], r["y"][[0, -1]], "+", color="k", ms=8)
         a.set_aspect("equal", adjustable="datalim")
         a.set_title(f"{label}: trajectory [m]")

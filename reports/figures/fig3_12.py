@@ -49,8 +49,8 @@ def main():
     for i, (col, title, scale) in enumerate((("vx", "v_x [m/s]", 1.0), ("vy", "v_y [m/s]", 1.0),
                                              ("omega", "ω [deg/s]", 180 / np.pi))):
         a = fig.add_subplot(gs[i, :])
-        a.plot(t, scale * raw[col], color=rb.VISCOUS, lw=0.9, label="model (no filter)")
-        a.plot(flt.time, scale * flt[col], color=rb.COULOMB, lw=1.2,
+        a.plot(t, scale * raw[col], color=c.VISCOUS, lw=0.9, label="model (no filter)")
+        a.plot(flt.time, scale * flt[col], color=c.FILTERED, lw=1.2,
                label=f"filtered, γ = {gamma:g}")
         a.set_title(title)
         a.legend(fontsize=7, loc="upper right")
@@ -64,16 +64,16 @@ def main():
         df = np.diff(flt[col])
         values[f"step_change_rms_ratio_{col}"] = rb.rms(df) / max(rb.rms(dv), 1e-300)
     a = fig.add_subplot(gs[3, 0])
-    a.plot(raw["x"], raw["y"], color=rb.VISCOUS, lw=1.0, label="no filter")
-    a.plot(flt["x"], flt["y"], color=rb.COULOMB, lw=1.0, ls="--", label="filtered")
+    a.plot(raw["x"], raw["y"], color=c.VISCOUS, lw=1.0, label="no filter")
+    a.plot(flt["x"], flt["y"], color=c.FILTERED, lw=1.0, ls="--", label="filtered")
     a.set_aspect("equal", adjustable="datalim")
     a.set_title("trajectory [m]")
     a.legend(fontsize=7)
     a = fig.add_subplot(gs[3, 1])
     f, p_raw = psd(raw["vx"], raw.dt)
     _, p_flt = psd(flt["vx"], flt.dt)
-    a.semilogy(f, p_raw, color=rb.VISCOUS, label="no filter")
-    a.semilogy(f, p_flt, color=rb.COULOMB, label="filtered")
+    a.semilogy(f, p_raw, color=c.VISCOUS, label="no filter")
+    a.semilogy(f, p_flt, color=c.FILTERED, label="filtered")
     # the filter's gain |1-γ| / |1 - γ e^{-iωdt}|, squared, times the raw PSD
     gain2 = (1 - gamma) ** 2 / np.abs(1 - gamma * np.exp(-2j * np.pi * f * raw.dt)) ** 2
     a.semilogy(f, gain2 * p_raw, color="0.3", lw=0.8, ls=":", label="raw × |H|² (theory)")

@@ -29,6 +29,7 @@ import common as c  # noqa: E402
 import robots as rb  # noqa: E402
 
 NAME = "fig3_6_9"
+MJ_LABEL = "MuJoCo" + rb.STANDIN  # the version comes with the data: rb.mujoco_label
 GAITS = (("tripod", "Fig. 3.6: tripod"), ("metachronal", "Fig. 3.9: metachronal"))
 
 
@@ -65,19 +66,19 @@ def main():
             for j, (lab, pv, pk) in enumerate((("F_x/Mg", vx[:, i], kx[:, i]),
                                                ("F_y/Mg", vy[:, i], ky[:, i]))):
                 a = axes[i, 3 * b + j]
-                a.plot(t[cyc], (s * pv / w)[cyc], color=rb.VISCOUS, lw=1.0,
+                a.plot(t[cyc], (s * pv / w)[cyc], color=c.VISCOUS, lw=1.0,
                        label="viscous-Coulomb (σ-scaled)")
-                a.plot(t[cyc], (pk / w)[cyc], color=rb.COULOMB, lw=0.9, ls="--", label="Coulomb")
+                a.plot(t[cyc], (pk / w)[cyc], color=c.COULOMB, lw=0.9, ls="--", label="Coulomb")
                 if feet is not None:
                     a.plot(mt[mcyc], (feet[leg][("Fx", "Fy")[j]] / mw)[mcyc],
-                           color=rb.MEASURED, lw=0.9, label=rb.MEASURED_LABEL)
+                           color=c.MUJOCO, lw=0.9, label=MJ_LABEL)
                 a.set_ylabel(f"{leg}: {lab}", fontsize=7)
             a = axes[i, 3 * b + 2]
-            a.plot(t[cyc], (v.leg("Fz", leg) / rb.mg(v))[cyc], color=rb.SUPPORT, lw=1.0,
+            a.plot(t[cyc], (v.leg("Fz", leg) / rb.mg(v))[cyc], color=c.SUPPORT, lw=1.0,
                    label="spring support")
             if feet is not None:
-                a.plot(mt[mcyc], (feet[leg]["Fz"] / mw)[mcyc], color=rb.MEASURED, lw=0.9,
-                       label=rb.MEASURED_LABEL)
+                a.plot(mt[mcyc], (feet[leg]["Fz"] / mw)[mcyc], color=c.MUJOCO, lw=0.9,
+                       label=MJ_LABEL)
                 # whole runs: ours at MuJoCo's sample times against MuJoCo's
                 fz_diff.append(rb.nearest(v, f"Fz_{leg}", mt) / np.interp(mt, t, rb.mg(v))
                                - feet[leg]["Fz"] / mw)

@@ -31,6 +31,7 @@ import common as c  # noqa: E402
 import robots as rb  # noqa: E402
 
 NAME = "fig3_7_10"
+MJ_LABEL = "MuJoCo" + rb.STANDIN  # the version comes with the data: rb.mujoco_label
 GAITS = (("tripod", "tripod (Fig. 3.7)"), ("metachronal", "metachronal (Fig. 3.10)"))
 
 
@@ -39,7 +40,7 @@ def hist(ax, ref, diff, title, values, key):
     lim = max(np.percentile(np.abs(ref), 99.5), np.percentile(np.abs(diff), 99.5), 1e-12)
     bins = np.linspace(-lim, lim, 61)
     ax.hist(ref, bins=bins, color="0.6", alpha=0.7, density=True, label="Coulomb − its mean")
-    ax.hist(diff, bins=bins, color=rb.VISCOUS, alpha=0.7, density=True,
+    ax.hist(diff, bins=bins, color=c.VISCOUS, alpha=0.7, density=True,
             label="viscous − Coulomb")
     ax.set_title(title, fontsize=8.5)
     ax.set_yticks([])
@@ -58,13 +59,13 @@ def hist_measured(ax, meas, preds, title, values, key):
     lim = max([np.percentile(np.abs(meas), 99.5)]
               + [np.percentile(np.abs(d), 99.5) for _, d in preds] + [1e-12])
     bins = np.linspace(-lim, lim, 41)
-    ax.hist(meas, bins=bins, color=rb.MEASURED, alpha=0.6, density=True,
-            label=f"{rb.MEASURED_LABEL} − its mean")
+    ax.hist(meas, bins=bins, color=c.MUJOCO, alpha=0.6, density=True,
+            label=f"{MJ_LABEL} − its mean")
     sd = float(np.std(meas))
     values[f"{key}_sd_mujoco"] = sd
     text = []
     for law, d in preds:
-        color = {"viscous": rb.VISCOUS, "coulomb": rb.COULOMB, "support": rb.SUPPORT}[law]
+        color = {"viscous": c.VISCOUS, "coulomb": c.COULOMB, "support": c.SUPPORT}[law]
         ax.hist(d, bins=bins, color=color, alpha=0.5, density=True, histtype="stepfilled",
                 label=f"{law} − MuJoCo")
         values[f"{key}_mujoco_ratio_{law}"] = rb.rms(d) / sd if sd > 0 else None
@@ -168,14 +169,14 @@ def main():
             values["metachronal_mujoco_slip_speed_p95_mm_s"]
             / max(values["tripod_mujoco_slip_speed_p95_mm_s"], 1e-300))
         values["mujoco_slip_note"] = (
-            f"{rb.MEASURED_LABEL}: slip speed of feet down, median / 95 %: tripod "
+            f"{MJ_LABEL}: slip speed of feet down, median / 95 %: tripod "
             f"{values['tripod_mujoco_slip_speed_median_mm_s']:.2g} / "
             f"{values['tripod_mujoco_slip_speed_p95_mm_s']:.3g} mm/s, metachronal "
             f"{values['metachronal_mujoco_slip_speed_median_mm_s']:.3g} / "
             f"{values['metachronal_mujoco_slip_speed_p95_mm_s']:.3g} mm/s (95 % ratio "
             f"{values['mujoco_slip_p95_ratio_metachronal_tripod']:.3g}).")
         values["mujoco_end_note"] = (
-            f"{rb.MEASURED_LABEL}: its trajectory ends "
+            f"{MJ_LABEL}: its trajectory ends "
             f"{values['tripod_mujoco_end_distance_rel_viscous']:.3g} (viscous) / "
             f"{values['tripod_mujoco_end_distance_rel_coulomb']:.3g} (Coulomb) of its path from "
             f"ours on the tripod, {values['metachronal_mujoco_end_distance_rel_viscous']:.3g} / "

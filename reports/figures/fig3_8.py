@@ -33,6 +33,7 @@ import common as c  # noqa: E402
 import robots as rb  # noqa: E402
 
 NAME = "fig3_8"
+MJ_LABEL = "MuJoCo" + rb.STANDIN  # the version comes with the data: rb.mujoco_label
 MOVING = 1e-6  # m/s: a foot in contact slower than this sticks
 
 
@@ -87,7 +88,7 @@ def main():
     # (B) Coulomb: the step.
     speed = np.hypot(sx, sy)
     a = axes[1]
-    a.plot(1e3 * speed, ratio, ".", ms=2, color=rb.COULOMB, alpha=0.5)
+    a.plot(1e3 * speed, ratio, ".", ms=2, color=c.COULOMB, alpha=0.5)
     a.axhline(1.0, color="0.4", lw=0.8, ls=":")
     a.set_xlabel("slip speed |u| [mm/s]")
     a.set_ylabel("|F_xy| / F_z")
@@ -125,8 +126,8 @@ def main():
         mratio = np.hypot(np.stack([feet[leg]["Fx"] for leg in k.legs], axis=1),
                           np.stack([feet[leg]["Fy"] for leg in k.legs], axis=1))[loaded] \
             / mfz[loaded]
-        a.plot(1e3 * msp, mratio, ".", ms=3, color=rb.MEASURED, alpha=0.6,
-               label=rb.MEASURED_LABEL)
+        a.plot(1e3 * msp, mratio, ".", ms=3, color=c.MUJOCO, alpha=0.6,
+               label=MJ_LABEL)
         a.legend(fontsize=7, loc="lower right")
         a.set_title("(B) Coulomb run (blue): a step at μ = 1; red: MuJoCo")
         mfit = c.linfit(msp, mratio)
@@ -159,10 +160,10 @@ def main():
                               "ratio_median": float(np.median(fr[ld] / z[ld]))})
         values["mujoco_creep"] = creep
         values["mujoco_slip_note"] = (
-            f"{rb.MEASURED_LABEL}: ({values['mujoco_slip_x_p5_mm_s']:.1f}, "
+            f"{MJ_LABEL}: ({values['mujoco_slip_x_p5_mm_s']:.1f}, "
             f"{values['mujoco_slip_x_p95_mm_s']:.1f}) mm/s over {mj['t'][-1]:.0f} s.")
         values["mujoco_step_note"] = (
-            f"{rb.MEASURED_LABEL}: feet slipping faster than 5 mm/s have median |F_xy|/F_z = "
+            f"{MJ_LABEL}: feet slipping faster than 5 mm/s have median |F_xy|/F_z = "
             + (f"{values['mujoco_ratio_slipping_median']:.3g}"
                if values["mujoco_ratio_slipping_median"] is not None else "— (none)")
             + " (μ = 1)"
@@ -178,7 +179,7 @@ def main():
                + " — softer contact creeps faster under less force, the time step changes "
                "nothing: MuJoCo's soft friction constraint, not its integration."))
         values["mujoco_duty_note"] = (
-            f"{rb.MEASURED_LABEL}: {values['mujoco_feet_down_mean']:.3g} feet down on average, "
+            f"{MJ_LABEL}: {values['mujoco_feet_down_mean']:.3g} feet down on average, "
             f"duty {values['mujoco_duty_mean']:.3g}.")
     else:
         for key in ("mujoco_slip_note", "mujoco_step_note", "mujoco_duty_note"):
@@ -188,7 +189,7 @@ def main():
     _, vx_, vy_, vratio = contact_slip(v)
     vspeed = np.hypot(vx_, vy_)
     a = axes[2]
-    a.plot(1e3 * vspeed, vratio, ".", ms=2, color=rb.VISCOUS, alpha=0.5)
+    a.plot(1e3 * vspeed, vratio, ".", ms=2, color=c.VISCOUS, alpha=0.5)
     fit = c.linfit(vspeed, vratio)
     values["viscous_fit"] = fit
     values["viscous_fit_slope"] = fit["k"]
