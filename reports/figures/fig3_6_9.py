@@ -106,7 +106,7 @@ def main():
                    bbox_to_anchor=(0.5, 0.965), frameon=False)
         fig.suptitle(f"{title}: BigANT's per-leg forces over one cycle, t = {t0:g}…"
                      f"{t0 + 1 / freq:g} s (synthetic; the thesis' red is F/T data)"
-                     + ("" if feet is not None else "\n" + rb.MUJOCO_MISSING), y=0.995)
+                     + ("" if feet is not None else "\n" + rb.MUJOCO_MISSING_TITLE), y=0.995)
         fig.tight_layout(rect=(0.02, 0, 1, 0.93))
         c.save_figure(fig, args.out, png)
     c.write_values(args.out, NAME, values)

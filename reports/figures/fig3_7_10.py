@@ -199,7 +199,7 @@ def gait_figure(plt, out, gait, png, title, laws_res, mj_res, mj_label, values):
                bbox_to_anchor=(0.5, 0.95), frameon=False)
     fig.suptitle(f"{title}: residual distributions (synthetic; the thesis' are against motion "
                  "capture and F/T data)" + ("" if mj_res is not None else
-                                            "\n" + rb.MUJOCO_MISSING), y=0.995)
+                                            "\n" + rb.MUJOCO_MISSING_TITLE), y=0.995)
     fig.tight_layout(rect=(0, 0, 1, 0.92))
     c.save_figure(fig, out, png)
 

@@ -70,6 +70,7 @@ def mujoco_label(peer: str | None) -> str:
 LEG_COLUMNS = ("contact", "Fz", "Fx", "Fy", "slip_x", "slip_y")
 MUJOCO_MISSING = ("no MuJoCo data (a build without MuJoCo, `slipwalk reproduce ch3_peer` not run, "
                   "or a fig3_14.csv without per-leg columns): the MuJoCo overlay is skipped")
+MUJOCO_MISSING_TITLE = "no MuJoCo data (see the values): its lines are left out"
 
 
 def body_velocity(t, x, y, theta) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
