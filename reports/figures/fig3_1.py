@@ -26,7 +26,8 @@ import legged as lg  # noqa: E402
 
 NAME = "fig3_1"
 DISTS = ("uniform", "normal", "exponential")
-COLOR = {"uniform": "tab:blue", "normal": "tab:green", "exponential": "tab:red"}
+# the three speed distributions have no thesis meaning: categorical colours, none of the laws'
+COLOR = {"uniform": c.CATEGORICAL[0], "normal": c.CATEGORICAL[1], "exponential": c.CATEGORICAL[2]}
 CLOSE = 0.25  # "quite close": within a quarter of the speeds' standard deviation
 
 
@@ -42,21 +43,23 @@ def force_curves(ax, v: np.ndarray, v_c: float, v_v: float, lo: float, hi: float
     coul = -np.sign(vb[:, None] + v[None, :]).sum(axis=1) / n
     visc = -(vb[:, None] + v[None, :]).sum(axis=1) / n
     ax.axhline(0, color="0.5", lw=0.8)
-    ax.plot(vb, coul, color="tab:blue", lw=1.6, label="Coulomb: −(μN/N) Σ sign(v_B + v_i)")
-    ax.plot(vb, visc, color="tab:orange", lw=1.6, label="viscous-Coulomb: −(μN/N) Σ (v_B + v_i)")
+    ax.plot(vb, coul, color=c.COULOMB, lw=1.8, label="Coulomb: −(μN/N) Σ sign(v_B + v_i)")
+    ax.plot(vb, visc, color=c.VISCOUS, lw=1.8, label="viscous-Coulomb: −(μN/N) Σ (v_B + v_i)")
     for x in -v:
         ax.axvline(x, color="0.8", lw=0.7, ls=":")
     if hi > lo:
-        ax.axvspan(lo, hi, color="tab:blue", alpha=0.12,
-                   label=f"Coulomb balances: [{lo:g}, {hi:g}] (non-unique)")
-    ax.plot([v_c], [0], "o", ms=8, mfc="none", mec="tab:blue", mew=2,
-            label=f"solve_coulomb: v_B = {v_c:.4g} (−median {-np.median(v):.4g})")
-    ax.plot([v_v], [0], "*", ms=11, color="tab:orange",
-            label=f"solve_viscous_coulomb: v_B = {v_v:.4g} (−mean {-np.mean(v):.4g})")
+        ax.axvspan(lo, hi, color=c.COULOMB, alpha=0.12,
+                   label=f"Coulomb balances [{lo:g}, {hi:g}] (not unique)")
+    ax.plot([v_c], [0], "o", ms=9, mfc="none", mec=c.COULOMB, mew=2,
+            label=f"solve_coulomb: {v_c:.4g} (−median {-np.median(v):.4g})")
+    ax.plot([v_v], [0], "*", ms=13, color=c.VISCOUS,
+            label=f"solve_viscous_coulomb: {v_v:.4g} (−mean {-np.mean(v):.4g})")
     ax.set_xlabel("body velocity v_B [m/s]  (dotted: −v_i, where foot i is at rest)")
     ax.set_ylabel("total friction force / μN")
     ax.set_title(title)
-    ax.legend(loc="upper right", fontsize=6.8)
+    lo_y = min(coul.min(), visc.min())
+    ax.set_ylim(lo_y - 1.2, max(coul.max(), visc.max()) + 0.15)  # room for the legend below
+    ax.legend(loc="lower left")
 
 
 def main():
@@ -143,7 +146,7 @@ def main():
                                                            for s in scales]
 
     # ---- figure -----------------------------------------------------------------------------------
-    fig, axs = plt.subplots(2, 2, figsize=(13, 8.6))
+    fig, axs = plt.subplots(2, 2, figsize=(13, 10.5))
     ex = [pid for pid in sorted(inputs) if "speeds" in inputs[pid] and pid not in eq_ids]
     for ax, pid, tag in zip(axs[0], ex[:2], ("a", "b")):
         row = np.flatnonzero(t["id"] == pid)[0]
@@ -163,53 +166,60 @@ def main():
             med_gap = [float(np.median(gap[m & (N == n)])) for n in ns]
             label = (f"{d}: {values[f'close_fraction_{d}']:.0%} of draws < {CLOSE} σ"
                      if parity == 1 else None)
-            ax.plot(ns, med_gap, ls=ls, marker=mk, color=COLOR[d], ms=3.5, label=label)
-    ax.plot([], [], "k-o", ms=3.5, label="odd N: |mean − median| / σ (median of 200 draws)")
-    ax.plot([], [], "k--s", ms=3.5, label="even N: distance of −mean from the Coulomb interval / σ")
-    ax.axhline(CLOSE, color="k", ls=":", lw=0.8)
-    ax.axhline(1 - np.log(2), color="tab:red", ls=":", lw=0.8)
+            ax.plot(ns, med_gap, ls=ls, marker=mk, color=COLOR[d], ms=4.5, lw=1.6, label=label)
+    ax.plot([], [], "-o", color=c.REFERENCE, ms=4.5, label="odd N: |mean − median| / σ")
+    ax.plot([], [], "--s", color=c.REFERENCE, ms=4.5,
+            label="even N: −mean to the Coulomb interval / σ")
+    ax.axhline(CLOSE, color=c.REFERENCE, ls=":", lw=0.9)
+    ax.axhline(1 - np.log(2), color=COLOR["exponential"], ls=":", lw=0.9)
     ax.text(2, 1 - np.log(2), "exponential, N → ∞: 1 − ln 2", ha="left", va="bottom",
-            fontsize=7, color="tab:red")
+            color=COLOR["exponential"])
     ax.set_xscale("log", base=2)
-    ticks = [n for n in Ns if n <= 11 or n % 2 == 0]
+    # every N up to 8, then the powers of two, and the largest unless one of those is near it:
+    # labels that do not collide
+    ticks = sorted({n for n in Ns if n <= 8 or n & (n - 1) == 0})
+    if Ns[-1] > 1.3 * ticks[-1]:
+        ticks.append(Ns[-1])
     ax.set_xticks(ticks)
-    ax.set_xticklabels([str(n) for n in ticks], fontsize=7)
+    ax.set_xticklabels([str(n) for n in ticks])
     ax.minorticks_off()
     ax.set_xlabel("number of feet N (speeds uniform on [−1, 1], standard normal, or exponential)")
     ax.set_ylabel("(viscous − Coulomb balance) / σ of the speeds")
-    ax.set_title("(c) how close −mean is to the Coulomb balance: 200 random draws per N")
-    ax.set_ylim(0, 0.62)
-    ax.legend(fontsize=7, loc="upper right")
+    ax.set_title("(c) how close −mean is to the Coulomb balance\n(median of 200 random draws per "
+                 "N and distribution)")
+    ax.set_ylim(0, 0.75)
+    ax.legend(loc="upper right")
     ax = axs[1, 1]
     if noise.any():
         for k, s_ in enumerate(scales):
             m = noise & (t["scale"] == s_)
             jit = np.linspace(-0.12, 0.12, int(m.sum()))
-            ax.plot(k - 0.2 + jit, amp_c[m], ".", ms=2.5, alpha=0.45, color="tab:blue",
+            ax.plot(k - 0.2 + jit, amp_c[m], ".", ms=3, alpha=0.45, color=c.COULOMB,
                     label="Coulomb (solve_coulomb)" if k == 0 else None)
-            ax.plot(k + 0.2 + jit, amp_v[m], ".", ms=2.5, alpha=0.45, color="tab:orange",
+            ax.plot(k + 0.2 + jit, amp_v[m], ".", ms=3, alpha=0.45, color=c.VISCOUS,
                     label="viscous-Coulomb" if k == 0 else None)
         ax.set_xticks(range(len(scales)))
         ax.set_xticklabels([f"σ = {s_:g} m/s" for s_ in scales])
         ax.set_xlim(-0.6, len(scales) - 0.4)
-        ax.set_ylim(0, 1.35 * max(values["noise_coulomb_amplification_max"],
+        ax.set_ylim(0, 2.0 * max(values["noise_coulomb_amplification_max"],
                                   values["noise_viscous_amplification_max"]))
-        ax.set_xlabel("noise on the feet's common speed 1 m/s (N = 4, 5, 6; 200 draws each)")
+        ax.set_xlabel("noise σ on the feet's common speed 1 m/s (N = 4, 5, 6; 200 draws each)")
         ax.set_ylabel("|v_B − (−1 m/s)| / σ")
         ax.set_title("(d) §3.1.2.3: all feet at one speed (no foot slips) plus noise")
-        ax.legend(fontsize=7, markerscale=4, loc="upper right")
+        ax.legend(markerscale=4, loc="upper right")
         ax.text(0.02, 0.97,
-                f"exactly equal speeds: both laws give −v_1 (errors "
+                f"equal speeds: both give −v_1\n(errors "
                 f"{values.get('equal_coulomb_max_abs_err', float('nan')):.1g} and "
                 f"{values.get('equal_viscous_max_abs_err', float('nan')):.1g} m/s)\n"
-                f"with noise: Coulomb moves by ≤ {values['noise_coulomb_amplification_max']:.2g} σ, "
-                f"viscous by ≤ {values['noise_viscous_amplification_max']:.2g} σ, at every σ\n"
-                f"(solve_coulomb within {values['noise_coulomb_vs_median_max_over_noise']:.2g} σ "
-                "of the exact Coulomb set)",
-                transform=ax.transAxes, va="top", fontsize=7)
+                "with noise, at every σ:\n"
+                f"Coulomb moves ≤ {values['noise_coulomb_amplification_max']:.2g} σ, "
+                f"viscous ≤ {values['noise_viscous_amplification_max']:.2g} σ\n"
+                f"solve_coulomb within {values['noise_coulomb_vs_median_max_over_noise']:.2g} σ"
+                "\nof the exact Coulomb set",
+                transform=ax.transAxes, va="top")
     fig.suptitle("Fig. 3.1: a body on the x axis driven by N feet with equal loads — Coulomb "
-                 "friction balances at −median(v_i), viscous-Coulomb at −mean(v_i)", fontsize=10)
-    fig.tight_layout()
+                 "friction balances at −median(v_i), viscous-Coulomb at −mean(v_i)")
+    fig.tight_layout(rect=(0, 0, 1, 0.98))
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

@@ -25,7 +25,7 @@ ROBOTS = (("multipod6", "6 legs"), ("multipod12", "12 legs"))
 def main():
     args = c.parse_args(__doc__.splitlines()[0])
     plt = c.setup_matplotlib()
-    fig, axes = plt.subplots(2, 4, figsize=(15, 6.4))
+    fig, axes = plt.subplots(2, 4, figsize=(14, 7.0))
     values: dict = {}
     runs = [rb.Run(args.data, name) for name, _ in ROBOTS]
     vlim = max(np.max(np.abs(np.r_[r["vx"], r["vy"]])) for r in runs) * 1.05
@@ -34,14 +34,14 @@ def main():
         for j, (col, title) in enumerate((("vx", "heading velocity [m/s]"),
                                           ("vy", "side velocity [m/s]"))):
             a = axes[i, j]
-            a.plot(t, r[col], color=rb.COULOMB, lw=0.9)
+            a.plot(t, r[col], color=c.ESTIMATE, lw=0.9)
             a.set_ylim(-vlim, vlim)
             a.set_title(f"{label}: {title}")
         a = axes[i, 2]
-        a.plot(t, np.degrees(r["omega"]), color=rb.COULOMB, lw=0.9)
+        a.plot(t, np.degrees(r["omega"]), color=c.ESTIMATE, lw=0.9)
         a.set_title(f"{label}: turning rate [deg/s]")
         a = axes[i, 3]
-        a.plot(r["x"], r["y"], color=rb.COULOMB, lw=1.2)
+        a.plot(r["x"], r["y"], color=c.ESTIMATE, lw=1.2)
         a.plot(r["x"][[0, -1]], r["y"][[0, -1]], "+", color="k", ms=8)
         a.set_aspect("equal", adjustable="datalim")
         a.set_title(f"{label}: trajectory [m]")
@@ -55,9 +55,10 @@ def main():
         values[f"{name}_heading_change_deg"] = float(np.degrees(r["theta"][-1] - r["theta"][0]))
         values[f"{name}_duration_s"] = float(t[-1])
         values[f"{name}_legs"] = len(r.legs)
-    fig.suptitle("Multipod, undulation gait at 0.3 Hz, Δφ = 1.35π, viscous-Coulomb (synthetic: "
-                 "the thesis' motion tracking needs its data)", fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    fig.suptitle("Multipod, undulation gait at 0.3 Hz, Δφ = 1.35π, viscous-Coulomb, the model's "
+                 "estimate in the thesis' blue\n(synthetic: the thesis' motion tracking, red, "
+                 "needs its data)")
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

@@ -31,7 +31,8 @@ import common as c  # noqa: E402
 NAME = "fig3_13"
 STUDY = "ch3_peer"
 PCT = (2.5, 25, 50, 75, 97.5)
-OURS, PEER = "tab:blue", "tab:orange"
+# ours is the viscous-Coulomb model; MuJoCo its own colour (the palette of common.py)
+OURS, PEER = c.VISCOUS, c.MUJOCO
 
 
 def table(data: Path, name: str, required: list[str]) -> tuple[c.Table, dict]:
@@ -80,7 +81,7 @@ def scaling(t: c.Table, values: dict, axes) -> None:
     values["ours_growth_p97_5_50"] = q_ours[-1][4] / base_ours
     contacts = t["contacts"]
     values["contacts_mean_50"] = float(np.mean(contacts[warm & (N == Ns[-1])]))
-    ribbon(ax_norm, Ns, np.array(q_ours) / base_ours, OURS, "ours (viscous-Coulomb evaluate)")
+    ribbon(ax_norm, Ns, np.array(q_ours) / base_ours, OURS, "ours (viscous-Coulomb model)")
     ribbon(ax_abs, Ns, q_ours, OURS, "ours")
     if has_peer:
         values["mujoco_us_3"], values["mujoco_us_50"] = q_peer[0][2], q_peer[-1][2]
@@ -103,9 +104,10 @@ def scaling(t: c.Table, values: dict, axes) -> None:
             values["mujoco_cold_us_median"] = med
             values["mujoco_cold_growth"] = med[-1] / med[0]
             values["mujoco_cold_iter_mean"] = float(np.nanmean(t["mujoco_iter"][cold]))
-        ribbon(ax_norm, Ns, np.array(q_peer) / base_peer, PEER, f"{values['peer']} mj_step")
-        ribbon(ax_abs, Ns, q_peer, PEER, f"{values['peer']} mj_step")
-        ribbon(ax_ratio, Ns, q_ratio, "tab:purple", "MuJoCo / ours, per configuration")
+        peer_label = values["peer"].replace("mujoco", "MuJoCo") + " mj_step"
+        ribbon(ax_norm, Ns, np.array(q_peer) / base_peer, PEER, peer_label)
+        ribbon(ax_abs, Ns, q_peer, PEER, peer_label)
+        ribbon(ax_ratio, Ns, q_ratio, c.REFERENCE, "MuJoCo / ours, per configuration")
         ax_ratio.axhline(1.0, color="0.4", lw=0.8)
         ax_ratio.set_ylim(bottom=0)
     else:
@@ -113,7 +115,8 @@ def scaling(t: c.Table, values: dict, axes) -> None:
             ax.text(0.5, 0.5, "MuJoCo not in this build\n(SLIPWALK_MUJOCO=OFF or "
                     "libmujoco-dev missing)", transform=ax.transAxes, ha="center", color="0.4")
     growth = c.thesis("3.5.3-mujoco-growth")
-    ax_norm.set_title(f"(a) time per step / median at N = 3 (thesis: ours < ×3, MuJoCo ×{growth:g})")
+    ax_norm.set_title(f"(a) time per step / median at N = 3\n(thesis: ours < ×3, MuJoCo "
+                      f"×{growth:g})")
     ax_norm.set_xlabel("legs N")
     ax_norm.set_ylabel("normalized time per step")
     ax_norm.legend(loc="upper left")
@@ -121,11 +124,11 @@ def scaling(t: c.Table, values: dict, axes) -> None:
     ax_abs.set_yscale("log")
     ax_abs.set_xlabel("legs N")
     ax_abs.set_ylabel("time per step [µs]")
-    ax_abs.set_title("(b) time per step, same machine and configurations")
+    ax_abs.set_title("(b) time per step,\nsame machine and configurations")
     ax_abs.legend(loc="upper left")
     ax_ratio.set_xlabel("legs N")
     ax_ratio.set_ylabel("MuJoCo time / our time")
-    ax_ratio.set_title("(c) how much slower MuJoCo's step is than our evaluation")
+    ax_ratio.set_title("(c) how much slower MuJoCo's step is\nthan our evaluation")
     if has_peer:
         ax_ratio.legend(loc="lower right")
 
@@ -188,23 +191,21 @@ def parallel(t: c.Table, side: dict, values: dict, ax) -> None:
                   product_gain_low_less_spread=None if gain_low is None else gain_low - spread,
                   product_gain_low_less_spread_reason=None if gain_low is not None else
                   f"1-minute load {load} on {cores} cores: no core free for the second thread")
-    ribbon(ax, Ms - 0.06, q_seq, "tab:green", "steps on M threads, poses composed sequentially "
-           "(thesis)")
-    ribbon(ax, Ms + 0.06, q_scan, "tab:red", "… poses by the parallel prefix product on SE(2)")
-    ribbon(ax, Ms + 0.18, q_cpu, "tab:gray", "CPU time of all threads / single-thread CPU time "
-           "(work added by threading)")
+    ribbon(ax, Ms - 0.06, q_seq, c.REFERENCE, "poses composed sequentially (thesis)")
+    ribbon(ax, Ms + 0.06, q_scan, c.CATEGORICAL[0], "poses by a parallel prefix product")
+    ribbon(ax, Ms + 0.18, q_cpu, c.NEUTRAL, "CPU time of all threads / 1 thread's")
     ax.plot(Ms, Ms, color="0.5", lw=0.8, ls="--", label="no parallelism (overhead = M)")
     ax.axhline(1.0, color="0.3", lw=0.8)
     if cores and Ms.max() > cores:
         ax.axvspan(cores + 0.5, Ms.max() + 0.5, color="0.85", alpha=0.6, lw=0,
-                   label=f"oversubscribed: this machine has {cores} cores")
+                   label=f"oversubscribed ({cores} cores)")
     ax.set_xticks(Ms)
     ax.set_xlim(0.5, Ms.max() + 0.5)
     ax.set_xlabel("threads M")
     ax.set_ylabel("time × M / median single-thread time")
-    ax.set_title(f"(d) parallel overhead, hexapod, {values['trajectories']} trajectories × "
-                 f"{values['steps']} steps (load {load})")
-    ax.legend(loc="upper left", fontsize=6.8)
+    ax.set_title(f"(d) parallel overhead, steps on M threads: hexapod,\n"
+                 f"{values['trajectories']} trajectories × {values['steps']} steps (load {load})")
+    ax.legend(loc="upper left")
 
 
 def main():
@@ -220,7 +221,7 @@ def main():
     if np.all(ta["time_ours_ns"] == 0) or np.all(tb["time_increments_ns"] == 0):
         c.fail(f"{args.data / STUDY}: timings are all 0 (a --no-timing run): nothing to plot")
     values: dict = {}
-    fig, ax = plt.subplots(2, 2, figsize=(13, 9))
+    fig, ax = plt.subplots(2, 2, figsize=(13, 10))
     scaling(ta, values, (ax[0, 0], ax[0, 1], ax[1, 0]))
     parallel(tb, side_b, values, ax[1, 1])
     fig.tight_layout()

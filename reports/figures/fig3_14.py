@@ -21,6 +21,7 @@ import html
 from pathlib import Path
 
 import numpy as np
+from matplotlib.lines import Line2D
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
 import common as c  # noqa: E402
@@ -28,7 +29,9 @@ import common as c  # noqa: E402
 NAME = "fig3_14"
 STUDY = "ch3_peer"
 GAITS = ("tripod", "metachronal")
-OURS_V, OURS_C, PEER = "tab:blue", "tab:cyan", "tab:orange"
+# The chapter's colours (common.py): the thesis drew its model blue and MuJoCo orange here, which
+# in Figs. 3.5-3.10 are Coulomb and viscous-Coulomb; MuJoCo gets its own colour.
+OURS_V, OURS_C, PEER = c.VISCOUS, c.COULOMB, c.MUJOCO
 # The column each sensitivity label varies; "base" is MuJoCo as §3.5.4 sets it.
 VARIED = {"mu": "mu", "solref_timeconst": "solref_timeconst",
           "solref_dampratio": "solref_dampratio", "timestep": "timestep", "kp_xy": "kp_xy",
@@ -74,7 +77,7 @@ def main():
     values: dict = {"peer_available": has_peer,
                     "peer": str(t.str("peer")[mj_rows][0]) if has_peer else "none",
                     "K_ours": float(t["K"][0]), "kp_z": float(t["kp_z"][0])}
-    fig, ax = plt.subplots(2, 4, figsize=(16, 7.5))
+    fig, ax = plt.subplots(2, 4, figsize=(14, 8.4))
     rows_html = []
     spreads, gaps, tracking = [], [], []
     for i, g in enumerate(GAITS):
@@ -164,8 +167,8 @@ def main():
             values[f"{g}_mujoco_theta_end_deg"] = float(np.degrees(mj["theta"][-1]))
             gaps.append(gv)
             rows_html += [(g, "base", "—", final(mj), trk["rmse_xy_foot_max"])] + gait_rows
-            curves.append((mj, PEER, "-", 1.8, f"{values['peer'].replace('mujoco', 'MuJoCo')} "
-                           "(as measured)"))
+            curves.append((mj, PEER, "-", 2.0, f"{values['peer'].replace('mujoco', 'MuJoCo')} "
+                           "(stand-in for the measured robot)"))
         for s, col, ls, lw, lab in curves:
             ax[i, 0].plot(s["t"], s["x"], color=col, ls=ls, lw=lw, label=lab)
             ax[i, 1].plot(s["t"], s["y"], color=col, ls=ls, lw=lw)
@@ -174,15 +177,15 @@ def main():
         for j, yl in enumerate(("x [m]", "y [m]", "θ [deg]")):
             ax[i, j].set_xlabel("t [s]")
             ax[i, j].set_ylabel(yl)
-            ax[i, j].set_title(f"{g}: {yl.split()[0]} against time")
+            ax[i, j].set_title(f"{g}: {yl.split()[0]}")
         ax[i, 3].set_xlabel("x [m]")
         ax[i, 3].set_ylabel("y [m]")
-        ax[i, 3].set_title(f"{g}: path (thin: MuJoCo variants)")
+        ax[i, 3].set_title(f"{g}: path")
         if not has_peer:
             ax[i, 3].text(0.5, 0.5, "MuJoCo not in this build\n(SLIPWALK_MUJOCO=OFF or "
                           "libmujoco-dev missing)", transform=ax[i, 3].transAxes, ha="center",
                           color="0.4")
-        ax[i, 0].legend(loc="upper left", fontsize=7)
+
     if has_peer:
         values["tracking_xy_foot_max_cm"] = 100 * max(tr["rmse_xy_foot_max"] for tr in tracking)
         values["tracking_rmse_x_cm"] = 100 * max(tr["rmse_x"] for tr in tracking)
@@ -228,7 +231,13 @@ def main():
     else:
         cells.append("<p>MuJoCo not in this build: no sensitivity table.</p>")
     c.atomic_write_text(args.out / f"{NAME}_table.html", "\n".join(cells) + "\n")
-    fig.tight_layout()
+    handles, labels = ax[0, 0].get_legend_handles_labels()
+    if has_peer:
+        handles.append(Line2D([], [], color=PEER, lw=0.8, alpha=0.6))
+        labels.append("MuJoCo with one parameter changed (table)")
+    fig.legend(handles, labels, loc="upper center", ncol=2, frameon=False,
+               bbox_to_anchor=(0.5, 1.0))
+    fig.tight_layout(rect=(0, 0, 1, 0.92))
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

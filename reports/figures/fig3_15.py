@@ -100,40 +100,43 @@ def main():
                                        values["eps_largest_minus_viscous"] <= 1e-3)
 
     # ---- figure ---------------------------------------------------------------------------------
-    fig, axs = plt.subplots(2, 2, figsize=(12.5, 10.5))
+    fig, axs = plt.subplots(2, 2, figsize=(12.5, 11.5))
     th = np.linspace(0, 2 * np.pi, 200)
     for ax, m, tag in ((axs[0, 0], "viscous", "a"), (axs[0, 1], "tangent", "b")):
         xs, ys, E = grid(t, m)
         cf = ax.contourf(xs, ys, E, levels=[0] + LEVELS + [max(1.0, float(E.max()))],
                          cmap="magma_r")
         cs = ax.contour(xs, ys, E, levels=LEVELS, colors="k", linewidths=0.6)
-        ax.clabel(cs, fmt=lambda v: f"{v:.1%}", fontsize=7)
+        # the viscous map's small levels crowd along δv_x = 0: label from 5 % up there
+        ax.clabel(cs, levels=[x for x in LEVELS if m != "viscous" or x >= 0.05],
+                  fmt=lambda v: f"{v:.1%}", fontsize=9.5)
         ax.contour(xs, ys, E, levels=[TOL], colors="tab:cyan", linewidths=2.2)
         ax.plot(RADIUS * np.cos(th), RADIUS * np.sin(th), "w--", lw=1.5)
         ax.plot(0, 0, "w+", ms=10)
         ax.set_aspect("equal")
-        ax.set_xlabel("δv_x / |v|   (v = (|v|, 0): along the sliding direction)")
-        ax.set_ylabel("δv_y / |v|   (across it)")
+        ax.set_xlabel("δv_x / |v|  (along the sliding direction)")
+        ax.set_ylabel("δv_y / |v|  (across it)")
         ax.set_title(f"({tag}) {LABEL[m]}\nlargest error for |δv| ≤ 0.2|v| (dashed): "
-                     f"{values[f'{m}_max_err_r02']:.2%}; cyan: the 2 % contour", fontsize=9)
+                     f"{values[f'{m}_max_err_r02']:.2%}\ncyan: the 2 % contour")
         fig.colorbar(cf, ax=ax, label="|F − F_C| / |F_C|", ticks=LEVELS)
     ax = axs[1, 0]
-    for m, col in (("viscous", "tab:orange"), ("tangent", "tab:blue")):
+    for m, col in (("viscous", c.VISCOUS), ("tangent", c.COULOMB)):
         radii, cmax = curves[m]
-        ax.plot(radii, cmax, "o-", ms=3, color=col, label=f"{LABEL[m]}")
+        ax.plot(radii, cmax, "o-", ms=4, lw=1.6, color=col, label=f"{LABEL[m]}")
     ax.axhline(TOL, color="k", ls="--", lw=0.8, label="2 %")
     ax.axvline(RADIUS, color="0.5", ls=":", lw=0.8)
     ax.set_yscale("log")
     ax.set_ylim(1e-4, 0.5)
     ax.set_xlabel("|δv| / |v|")
     ax.set_ylabel("largest |F − F_C| / |F_C| on the circle |δv|")
-    ax.set_title("(c) largest error on each circle |δv|: the viscous ansatz errs to first order "
-                 "(along v),\nthe linearized Coulomb force to second order", fontsize=9)
-    ax.legend(fontsize=7.5)
+    ax.set_title("(c) largest error on each circle |δv|: the viscous\nansatz errs to first order "
+                 "(along v), the linearized\nCoulomb force to second order")
+    ax.legend(loc="lower right")
     ax = axs[1, 1]
     if eps.size:
-        ax.plot(eps, e_max, "o-", ms=3.5, color="tab:purple", label="eq. 3.14, calibrated at v")
-        ax.axhline(values["viscous_max_err_r02"], color="tab:orange", ls=":",
+        ax.plot(eps, e_max, "o-", ms=4, lw=1.6, color=c.REFERENCE,
+                label="eq. 3.14, calibrated at v")
+        ax.axhline(values["viscous_max_err_r02"], color=c.VISCOUS, ls=":", lw=1.5,
                    label=f"viscous-Coulomb (ε → ∞): {values['viscous_max_err_r02']:.1%}")
         ax.axhline(TOL, color="k", ls="--", lw=0.8, label="2 %")
         ax.set_xscale("log")
@@ -141,12 +144,11 @@ def main():
         ax.set_ylim(1e-4, 0.5)
         ax.set_xlabel("ε of eq. 3.14 [m/s]  (|v| = 1 m/s)")
         ax.set_ylabel("largest error for |δv| ≤ 0.2|v|")
-        ax.set_title("(d) the ε-family: Coulomb (ε → 0) to viscous-Coulomb (ε → ∞)",
-                     fontsize=9)
-        ax.legend(fontsize=7.5)
+        ax.set_title("(d) the ε-family: Coulomb (ε → 0)\nto viscous-Coulomb (ε → ∞)")
+        ax.legend(loc="lower right")
     fig.suptitle("Fig. 3.15: error of viscous-type friction against Coulomb friction around the "
-                 "sliding velocity v = (1, 0) (one foot, μF_z = 1)", fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.97))
+                 "sliding velocity v = (1, 0) (one foot, μF_z = 1)")
+    fig.tight_layout(rect=(0, 0, 1, 0.97), h_pad=2.0)
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

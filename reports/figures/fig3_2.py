@@ -19,7 +19,8 @@ import common as c  # noqa: E402
 import legged as lg  # noqa: E402
 
 NAME = "fig3_2"
-FOOT_COLORS = ["tab:purple", "tab:green", "tab:cyan", "tab:olive", "tab:brown", "tab:pink"]
+FOOT_COLORS = c.CATEGORICAL  # the feet have no thesis meaning: none of the laws' colours
+LAW_COLOR = {"coulomb": c.COULOMB, "viscous": c.VISCOUS}
 SIMILAR = 0.1  # "very similar": balances apart by at most 10 % of the feet's mean speed
 
 
@@ -122,8 +123,8 @@ def main():
     values["compare_median_per_spread"] = float(sx @ sy / (sx @ sx))
 
     # ---- figure -----------------------------------------------------------------------------------
-    fig = plt.figure(figsize=(14.5, 9.6))
-    gs = fig.add_gridspec(2, 3, width_ratios=[1.15, 1.15, 1.0])
+    fig = plt.figure(figsize=(14, 11))
+    gs = fig.add_gridspec(2, 3, width_ratios=[1.12, 1.12, 0.9])
     ax_c, ax_v = fig.add_subplot(gs[0, 0]), fig.add_subplot(gs[1, 0])
     ax_r = fig.add_subplot(gs[0, 2])
     ax_e = fig.add_subplot(gs[0, 1])
@@ -136,90 +137,98 @@ def main():
         levels = MaxNLocator(nbins=20).tick_values(0.0, float(F.max()))
         cs = ax.contourf(xs, ys, F, levels=levels, cmap="viridis")
         ax.contour(xs, ys, F, levels=cs.levels, colors="k", linewidths=0.3, alpha=0.4)
-        fig.colorbar(cs, ax=ax, label="‖Σ F_xy‖ [N]  (μ = 1, Mg = 1 N)")
+        fig.colorbar(cs, ax=ax, label="‖Σ F_xy‖ [N]  (μ = 1, Mg = 1 N)", shrink=0.9)
         for k in range(qx.size):
-            ax.plot(-qdx[k], -qdy[k], "o", ms=7, color=FOOT_COLORS[k % len(FOOT_COLORS)],
-                    mec="w", mew=1.0)
-        for other, i, mk in (("coulomb", bc, "*"), ("viscous", bv, "*")):
+            ax.plot(-qdx[k], -qdy[k], "o", ms=8, color=FOOT_COLORS[k % len(FOOT_COLORS)],
+                    mec="w", mew=1.2)
+        # the balances as stars in each law's colour (the thesis' are red, the colour this
+        # report keeps for measurements); this panel's own law filled
+        for other, i in (("coulomb", bc), ("viscous", bv)):
             own = other == lw
-            ax.plot(t["vx"][i], t["vy"][i], mk, ms=15 if own else 11,
-                    mfc="red" if own else "none", mec="red", mew=1.5,
-                    label=f"{other} balance" + (" (this law)" if own else ""))
+            ax.plot(t["vx"][i], t["vy"][i], "*", ms=19 if own else 15,
+                    mfc=LAW_COLOR[other] if own else "none",
+                    mec=LAW_COLOR[other] if not own else "k", mew=2.0 if not own else 0.8,
+                    label=f"{'Coulomb' if other == 'coulomb' else 'viscous'} balance")
         ax.set_xlabel("body velocity V_x [m/s]")
         ax.set_ylabel("body velocity V_y [m/s]")
         ax.set_title(title)
         ax.set_aspect("equal")
-        ax.legend(fontsize=7, loc="lower left", framealpha=0.85)
-    # the robot
+        ax.legend(loc="lower left", framealpha=0.85)
+    # the robot: feet numbered as in the text panel
     for k in range(qx.size):
         col = FOOT_COLORS[k % len(FOOT_COLORS)]
-        ax_r.plot(qx[k], qy[k], "o", ms=9, color=col)
+        ax_r.plot(qx[k], qy[k], "o", ms=10, color=col)
         ax_r.annotate("", xy=(qx[k] + 0.25 * qdx[k], qy[k] + 0.25 * qdy[k]), xytext=(qx[k], qy[k]),
                       arrowprops=dict(arrowstyle="->", color=col, lw=2))
-        # the label on the side away from the arrow
-        sx = 1.0 if qx[k] >= 0 else -1.0
-        sy = 1.0 if qy[k] >= 0 else -1.0
-        ax_r.text(qx[k] + 0.04 * sx, qy[k] + 0.09 * sy,
-                  f"foot {k}: q_dot = ({qdx[k]:g}, {qdy[k]:g}) m/s\nF_z = {Fz[k]:.3g} N",
-                  fontsize=7, color=col, ha="left" if sx > 0 else "right",
-                  va="bottom" if sy > 0 else "top")
+        # the number on the side away from the arrow
+        ax_r.annotate(str(k), (qx[k], qy[k]), textcoords="offset points",
+                      xytext=(-14 * np.sign(qdx[k] or 1), -14 * np.sign(qdy[k] or 1)),
+                      ha="center", va="center", color=col, fontweight="bold", fontsize=11)
     ax_r.plot([qx.min(), qx.max(), qx.max(), qx.min(), qx.min()],
               [qy.min(), qy.min(), qy.max(), qy.max(), qy.min()], color="0.5", lw=1)
     ax_r.plot(0, 0, "k+", ms=10)
     ax_r.set_aspect("equal")
-    ax_r.set_xlim(qx.min() - 0.7, qx.max() + 0.7)
+    ax_r.set_xlim(qx.min() - 0.35, qx.max() + 0.35)
     ax_r.set_ylim(qy.min() - 0.35, qy.max() + 0.35)
     ax_r.set_xlabel("x [m] (body frame, forward)")
     ax_r.set_ylabel("y [m]")
     ax_r.set_title("(c) the robot: feet and their velocities\nrelative to the body (arrows: 0.25 s)")
-    # the ε-family
+    # the ε-family; the three components have no thesis colour
     if eps.size:
-        for j, (name, col) in enumerate((("v_x [m/s]", "tab:blue"), ("v_y [m/s]", "tab:green"),
-                                         ("ω [rad/s]", "tab:red"))):
-            ax_e.plot(eps, ev[:, j], "o-", ms=3, color=col, label=name)
-            ax_e.axhline(values["coulomb_balance"][j], color=col, ls="--", lw=0.8)
-            ax_e.axhline(values["viscous_balance"][j], color=col, ls=":", lw=0.8)
+        for j, (name, col) in enumerate((("v_x [m/s]", c.CATEGORICAL[0]),
+                                         ("v_y [m/s]", c.CATEGORICAL[1]),
+                                         ("ω [rad/s]", c.CATEGORICAL[2]))):
+            ax_e.plot(eps, ev[:, j], "o-", ms=4, lw=1.6, color=col, label=name)
+            ax_e.axhline(values["coulomb_balance"][j], color=col, ls="--", lw=1.0)
+            ax_e.axhline(values["viscous_balance"][j], color=col, ls=":", lw=1.2)
         ax_e.set_xscale("log")
-        ax_e.set_xlabel("ε of eq. 3.14 [m/s]  (dashed: Coulomb, dotted: viscous-Coulomb)")
+        ax_e.set_xlabel("ε of eq. 3.14 [m/s]")
         ax_e.set_ylabel("balance body velocity")
-        ax_e.set_title("(d) eq. 3.14: from viscous-Coulomb (ε → ∞) to Coulomb (ε → 0)")
-        ax_e.legend(fontsize=7)
-    # random robots
-    for n in Ns:
-        ax_n.plot(spreads, med[n], "o-", ms=3.5, label=f"N = {n} legs on a circle")
-    ax_n.plot(spreads, values["compare_median_per_spread"] * np.array(spreads), "k:", lw=1,
-              label=f"{values['compare_median_per_spread']:.2f} × spread")
-    ax_n.axhline(SIMILAR, color="k", ls="--", lw=0.8)
-    ax_n.axvline(0.2, color="0.5", ls=":", lw=0.8)
-    ax_n.set_xlabel("spread of the foot velocities around (−1, 0) m/s [m/s per component]")
-    ax_n.set_ylabel("‖Δ(v_x, v_y, R ω)‖ / mean foot speed (median of 200)")
-    ax_n.set_title("(e) beyond one robot: how far apart the two balances are")
-    ax_n.legend(fontsize=7)
+        ax_e.set_title("(d) eq. 3.14: from viscous-Coulomb (ε → ∞)\nto Coulomb (ε → 0); "
+                       "dashed: Coulomb, dotted: viscous")
+        ax_e.legend(loc="center right")
+    # random robots: N in a sequential colour scale
+    cmap = plt.get_cmap("viridis")
+    for i, n in enumerate(Ns):
+        ax_n.plot(spreads, med[n], "o-", ms=4, lw=1.6, color=cmap(i / max(len(Ns) - 1, 1) * 0.9),
+                  label=f"N = {n} legs on a circle")
+    ax_n.plot(spreads, values["compare_median_per_spread"] * np.array(spreads), ":",
+              color=c.REFERENCE, lw=1.2, label=f"{values['compare_median_per_spread']:.2f} × spread")
+    ax_n.axhline(SIMILAR, color=c.REFERENCE, ls="--", lw=0.9)
+    ax_n.axvline(0.2, color="0.5", ls=":", lw=0.9)
+    ax_n.set_xlabel("spread of the foot velocities around (−1, 0) m/s\n[m/s per component]")
+    ax_n.set_ylabel("‖Δ(v_x, v_y, R ω)‖ / mean foot speed\n(median of 200 robots)")
+    ax_n.set_title("(e) beyond one robot:\nhow far apart the two balances are")
+    ax_n.legend(loc="upper left")
     ax_t.axis("off")
+    vb, cb = values["viscous_balance"], values["coulomb_balance"]
     lines = [
-        "This robot (panels a–c):",
-        f"  viscous balance   (v_x, v_y, ω) = ({values['viscous_balance'][0]:.3f}, "
-        f"{values['viscous_balance'][1]:.3f}, {values['viscous_balance'][2]:.3f})",
-        f"  Coulomb balance   (v_x, v_y, ω) = ({values['coulomb_balance'][0]:.3f}, "
-        f"{values['coulomb_balance'][1]:.3f}, {values['coulomb_balance'][2]:.3f})",
-        f"  apart by {values['balance_distance']:.3f} m/s (with L ω, L = {L:.2f} m)",
-        f"  = {values['balance_rel_distance']:.0%} of the mean foot speed {mean_speed:.3f} m/s",
-        f"  foot velocities spread {values['rest_velocity_spread']:.0%} of their mean speed",
+        "Feet (c): q_dot [m/s], F_z [N]",
+        *[f" {k}: ({qdx[k]:g}, {qdy[k]:g}), {Fz[k]:.3g}" for k in range(qx.size)],
         "",
-        f"‖Σ F‖² fitted by a quadratic in (V_x, V_y): max residual",
-        f"  viscous-Coulomb {values['viscous_F2_quadratic_residual']:.1e},  "
+        "Balances (v_x, v_y, ω):",
+        f" viscous ({vb[0]:.3f}, {vb[1]:.3f}, {vb[2]:.3f})",
+        f" Coulomb ({cb[0]:.3f}, {cb[1]:.3f}, {cb[2]:.3f})",
+        f" apart {values['balance_distance']:.3f} m/s (ω as Lω,",
+        f" L = {L:.2f} m): {values['balance_rel_distance']:.0%} of the",
+        f" mean foot speed {mean_speed:.3f} m/s;",
+        f" feet spread {values['rest_velocity_spread']:.0%} of it",
+        "",
+        "‖Σ F‖² against a quadratic in",
+        "(V_x, V_y), largest residual:",
+        f" viscous {values['viscous_F2_quadratic_residual']:.1e}, "
         f"Coulomb {values['coulomb_F2_quadratic_residual']:.2f}",
         "",
-        "Random robots (panel e), spread 0.2 m/s:",
-        f"  median {values.get('compare_spread02_median_rel_diff', float('nan')):.1%}, "
-        f"90th percentile {values.get('compare_spread02_p90_rel_diff', float('nan')):.1%}",
+        "Random robots (e), spread 0.2 m/s:",
+        f" median {values.get('compare_spread02_median_rel_diff', float('nan')):.1%}, "
+        f"90th pct. {values.get('compare_spread02_p90_rel_diff', float('nan')):.1%}",
     ]
-    ax_t.text(0.0, 1.0, "\n".join(lines), va="top", family="monospace", fontsize=7.6,
+    ax_t.text(0.0, 1.0, "\n".join(lines), va="top", family="monospace",
               transform=ax_t.transAxes)
     fig.suptitle("Fig. 3.2: a 4-legged robot slipping under Coulomb or viscous-Coulomb friction "
-                 "(dots: body velocities that put a foot at rest, colour as in c; stars: "
-                 "balances)", fontsize=10)
-    fig.tight_layout()
+                 "(dots: body velocities that put a foot at rest,\ncoloured as its foot in c; "
+                 "stars: each law's balance, in its colour)")
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

@@ -23,7 +23,7 @@ import common as c  # noqa: E402
 import legged as lg  # noqa: E402
 
 NAME = "fig3_3_4"
-COLORS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
+COLORS = c.CATEGORICAL  # the legs have no thesis meaning: none of the laws' colours, no red
 
 
 class Robot:
@@ -123,8 +123,8 @@ def plot_2d(fig, gs_top, gs_bottom, r: Robot):
     bspan = max(np.ptp(b_all), 0.05)
     bs = np.linspace(b_all.min() - 0.35 * bspan, b_all.max() + 0.35 * bspan, 50)
     for j in range(r.q.shape[0]):
-        ax.plot(bs, bs * r.q[j, 0] - r.q[j, 2], color=COLORS[j], lw=1.5,
-                label=f"leg {j} touches: z = β q_x − q_z")
+        ax.plot(bs, bs * r.q[j, 0] - r.q[j, 2], color=COLORS[j], lw=2,
+                label=f"leg {j}: z = β q_x − q_z")
     for i in range(r.s.shape[0]):
         b, z = r.s[i, 1], r.s[i, 2]
         if i + 1 < r.s.shape[0]:
@@ -138,17 +138,17 @@ def plot_2d(fig, gs_top, gs_bottom, r: Robot):
             ax.plot(b, z, "o", ms=11, mfc="none", mec=COLORS[r.changed[i]], mew=1.5)
         if not (last and np.allclose(r.s[i], r.s[i - 1])):
             ax.annotate(str(i), (b, z), textcoords="offset points",
-                        xytext=(-12 if i % 2 else 6, -12 if i % 2 else 5), fontsize=9,
+                        xytext=(-14 if i % 2 else 7, -14 if i % 2 else 6), fontsize=12,
                         fontweight="bold")
     ax.set_xlim(bs[0], bs[-1])
     zspan = max(np.ptp(z_all), 0.02)
     ax.set_ylim(z_all.min() - 0.4 * zspan, z_all.max() + 0.4 * zspan)
     ax.set_xlabel("pitch slope β")
     ax.set_ylabel("body height z [m]")
-    ax.set_title("Fig. 3.3 (a): 2-D robot, search in (β, z); above a leg's line the leg is in the "
-                 "air\n(black: path, dashed: the counterfactual rest of a segment, star: balance)",
-                 fontsize=9)
-    ax.legend(fontsize=7, loc="best")
+    ax.set_title("Fig. 3.3 (a): 2-D robot, search in (β, z); above a leg's line\nthat leg is in "
+                 "the air (black: path; dashed: the counterfactual\nrest of a segment; star: "
+                 "balance)")
+    ax.legend(loc="best", title="leg touches the ground on")
     # poses
     n = r.s.shape[0]
     sub = gs_bottom.subgridspec(1, n)
@@ -171,7 +171,7 @@ def plot_2d(fig, gs_top, gs_bottom, r: Robot):
                 axp.plot(r.q[j, 0], foot, "o", ms=13, mfc="none", mec="k", mew=1.2)
         axp.set_xlim(xmin - 0.02, xmax + 0.02)
         axp.set_ylim(-0.03, 0.32)
-        axp.set_title(f"{i}: {r.mask[i]}\nβ = {b:.3f}\nz = {z:.3f}", fontsize=7.5)
+        axp.set_title(f"{i}: {r.mask[i]}\nβ = {b:.3f}\nz = {z:.3f}")
         axp.set_xticks([])
         if i:
             axp.set_yticks([])
@@ -202,17 +202,17 @@ def plot_3d(fig, gs_top, gs_bottom, r: Robot):
     for i in range(r.s.shape[0]):
         if i == r.s.shape[0] - 1 and np.allclose(r.s[i], r.s[i - 1]):
             continue
-        ax.text(A[i], B[i], r.s[i, 2] + 0.004, str(i), fontsize=10, fontweight="bold")
+        ax.text(A[i], B[i], r.s[i, 2] + 0.004, str(i), fontsize=12, fontweight="bold")
     ax.set_xlabel("roll slope α")
     ax.set_ylabel("pitch slope β")
     ax.set_zlabel("height z [m]")
     ax.set_zlim(zlo, zhi)
     ax.view_init(elev=22, azim=-60)
-    ax.set_title("Fig. 3.4 (left): 3-D robot, search in (α, β, z)", fontsize=9)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.set_title("Fig. 3.4 (left): 3-D robot, search in (α, β, z)")
+    ax.legend(loc="upper left", bbox_to_anchor=(-0.05, 1.0))
     n = r.s.shape[0]
     cols = (n + 1) // 2
-    sub = gs_bottom.subgridspec(2, cols, hspace=0.12, wspace=0.0)
+    sub = gs_bottom.subgridspec(2, cols, hspace=0.3, wspace=0.0)
     qx, qy = r.q[:, 0], r.q[:, 1]
     corners = np.array([[qx.min(), qy.min()], [qx.max(), qy.min()], [qx.max(), qy.max()],
                         [qx.min(), qy.max()], [qx.min(), qy.min()]])
@@ -240,8 +240,7 @@ def plot_3d(fig, gs_top, gs_bottom, r: Robot):
         axp.set_yticks([])
         axp.set_zticks([])
         axp.view_init(elev=18, azim=-60)
-        axp.set_title(f"{i}: {r.mask[i]}  α = {a:.3f}, β = {b:.3f}, z = {z:.3f}",
-                      fontsize=7.5, pad=0)
+        axp.set_title(f"{i}: {r.mask[i]}\nα = {a:.3f}, β = {b:.3f}, z = {z:.3f}", pad=0)
 
 
 def main():
@@ -270,15 +269,14 @@ def main():
     values["eq3_12_printed_cos"] = values.get("robot3d_eq3_12_cos_printed")
     values["eq3_12_swapped_cos"] = values.get("robot3d_eq3_12_cos_swapped")
 
-    fig = plt.figure(figsize=(15, 12))
-    outer = fig.add_gridspec(2, 2, height_ratios=[1.2, 1.0], hspace=0.3, wspace=0.16,
-                             left=0.06, right=0.97, top=0.9, bottom=0.03)
+    fig = plt.figure(figsize=(14, 13.5))
+    outer = fig.add_gridspec(2, 2, height_ratios=[1.2, 1.0], hspace=0.28, wspace=0.14,
+                             left=0.07, right=0.97, top=0.88, bottom=0.03)
     plot_2d(fig, outer[0, 0], outer[1, 0], r2)
     plot_3d(fig, outer[0, 1], outer[1, 1], r3)
     fig.suptitle("Figs. 3.3, 3.4: the spring-support search (§3.3). Bottom: the robot at each "
-                 "state, its contact set (C: in contact, -: in the air, one letter per leg 0…3),\n"
-                 "legs as springs, ▲ feet in the contact set, ○ the leg that just changed "
-                 "(drawn at the foot)", fontsize=10)
+                 "state with its contact set\n(C: in contact, -: in the air, one letter per leg "
+                 "0…3), legs as springs, ▲ feet in the contact set, ○ the leg that just changed")
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from matplotlib.lines import Line2D
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
 import common as c  # noqa: E402
@@ -38,31 +39,29 @@ def main():
     plt = c.setup_matplotlib()
     runs = {"viscous": rb.Run(args.data, "tripod_viscous"),
             "coulomb": rb.Run(args.data, "tripod_coulomb")}
-    color = {"viscous": rb.VISCOUS, "coulomb": rb.COULOMB}
+    color = {"viscous": c.VISCOUS, "coulomb": c.COULOMB}
     label = {"viscous": "viscous-Coulomb", "coulomb": "Coulomb"}
     v, k = runs["viscous"], runs["coulomb"]
     if v.t.n != k.t.n or not np.allclose(v.time, k.time):
         c.fail("tripod_viscous and tripod_coulomb have different time grids")
     t = v.time
 
-    fig = plt.figure(figsize=(11, 11))
-    gs = fig.add_gridspec(4, 3, height_ratios=[1.3, 1, 1, 1], hspace=0.5, wspace=0.3, top=0.93,
-                          bottom=0.05)
+    mj = rb.mujoco_as_measured(args.data, "tripod")
+    mj_label = mj["label"] + rb.STANDIN if mj is not None else None
+    fig = plt.figure(figsize=(12, 12.5))
+    gs = fig.add_gridspec(4, 3, height_ratios=[1.25, 1, 1, 1], hspace=0.55, wspace=0.3, top=0.9,
+                          bottom=0.05, left=0.07, right=0.98)
     ax = fig.add_subplot(gs[0, :])
     for key, r in runs.items():
         ax.plot(r["x"], r["y"], color=color[key], lw=1.5, label=label[key])
         for i in (0, r.t.n // 2, r.t.n - 1):
             outline(ax, r["x"][i], r["y"][i], r["theta"][i], color[key])
-    mj = rb.mujoco_as_measured(args.data, "tripod")
     if mj is not None:
-        ax.plot(mj["x"], mj["y"], color=rb.MEASURED, lw=1.5, label=rb.MEASURED_LABEL)
+        ax.plot(mj["x"], mj["y"], color=c.MUJOCO, lw=1.5, label=mj_label)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title("Robot trajectory (outlines and + at start, half-way, end); the thesis adds "
-                 "motion capture" + ("; here MuJoCo driven by the same feet (Fig. 3.14)"
-                                     if mj is not None else ""))
-    ax.legend(loc="best")
+    ax.set_title("Robot trajectory: body outline and origin (+) at the start, half-way and end")
 
     roll, pitch = v.roll_pitch_deg()
     roll_k, pitch_k = k.roll_pitch_deg()
@@ -71,35 +70,35 @@ def main():
                                          np.degrees(k["theta"]))]):
         a = fig.add_subplot(gs[1, j])
         if j < 2:  # the spring support is independent of the friction law
-            a.plot(t, yv, color=rb.SUPPORT, lw=1.2, label="spring support (both laws)")
+            a.plot(t, yv, color=c.SUPPORT, lw=1.2, label="spring support (both laws)")
         else:
-            a.plot(t, yv, color=rb.VISCOUS, lw=1.2, label="viscous-Coulomb")
-            a.plot(t, yk, color=rb.COULOMB, lw=1.2, ls="--", label="Coulomb")
+            a.plot(t, yv, color=c.VISCOUS, lw=1.2)
+            a.plot(t, yk, color=c.COULOMB, lw=1.2, ls="--")
             if mj is not None:
-                a.plot(mj["t"], np.degrees(mj["theta"]), color=rb.MEASURED, lw=1.0,
-                       label=rb.MEASURED_LABEL)
+                a.plot(mj["t"], np.degrees(mj["theta"]), color=c.MUJOCO, lw=1.0)
         a.set_title(name)
         a.set_xlabel("t [s]")
-        a.legend(fontsize=6.5)
 
     comps = [("vx", "heading velocity [m/s]", 1.0), ("vy", "side velocity [m/s]", 1.0),
              ("omega", "turning rate [deg/s]", 180 / np.pi)]
     values: dict = {"frames": v.t.n, "duration_s": float(t[-1]), "quick": v.quick()}
     for j, (col, title, scale) in enumerate(comps):
         a = fig.add_subplot(gs[2, j])
-        a.plot(t, scale * v[col], color=rb.VISCOUS, lw=1.0, label="viscous-Coulomb")
-        a.plot(t, scale * k[col], color=rb.COULOMB, lw=1.0, ls="--", label="Coulomb")
+        a.plot(t, scale * v[col], color=c.VISCOUS, lw=1.0)
+        a.plot(t, scale * k[col], color=c.COULOMB, lw=1.0, ls="--")
         if mj is not None:
-            a.plot(mj["t"], scale * mj[col], color=rb.MEASURED, lw=0.9, label=rb.MEASURED_LABEL)
+            a.plot(mj["t"], scale * mj[col], color=c.MUJOCO, lw=0.9)
         a.set_title(title)
         a.set_xlabel("t [s]")
-        a.legend(fontsize=6.5)
         d = fig.add_subplot(gs[3, j])
-        diff = scale * (k[col] - v[col])
-        d.plot(t, diff, color="0.3", lw=0.9)
+        # the difference in mm/s (velocities) or deg/s: small next to the signals above
+        dscale, dunit = (1e3, "mm/s") if col != "omega" else (1.0, "deg/s")
+        diff = dscale * scale * (k[col] - v[col])
+        d.plot(t, diff, color=c.NEUTRAL, lw=0.9)
         if col == "vy":
             rb.flat_zero(a, scale * np.r_[v[col], k[col]], "m/s", "a straight tripod")
-        d.set_title("Δ " + title.split(" velocity")[0].split(" rate")[0] + " (Coulomb − viscous)")
+        d.set_title("Δ " + title.split(" velocity")[0].split(" rate")[0]
+                    + f" [{dunit}], Coulomb − viscous")
         d.set_xlabel("t [s]")
         values[f"rms_{col}_viscous"] = rb.rms(v[col])
         values[f"rms_{col}_diff"] = rb.rms(k[col] - v[col])
@@ -128,9 +127,17 @@ def main():
         values["mujoco_end"] = end_m
         values["mujoco_end_distance_to_viscous_m"] = float(np.linalg.norm(end_m - end_v))
         values["mujoco_end_distance_to_coulomb_m"] = float(np.linalg.norm(end_m - end_k))
-    fig.suptitle("BigANT, tripod gait at 0.1 Hz — synthetic: no motion capture; row 4 compares "
-                 f"the two laws (ends {values['end_distance_m']:.3g} m apart after "
-                 f"{path:.3g} m)", fontsize=10)
+    # one legend for every panel, above them
+    handles = [Line2D([], [], color=c.VISCOUS, lw=1.5, label="viscous-Coulomb"),
+               Line2D([], [], color=c.COULOMB, lw=1.5, ls="--", label="Coulomb"),
+               Line2D([], [], color=c.SUPPORT, lw=1.5, label="spring support (both laws)")]
+    if mj is not None:
+        handles.append(Line2D([], [], color=c.MUJOCO, lw=1.5, label=mj_label))
+    handles.append(Line2D([], [], color=c.NEUTRAL, lw=1.5, label="Coulomb − viscous (row 4)"))
+    fig.legend(handles=handles, loc="upper center", ncol=3, bbox_to_anchor=(0.5, 0.965),
+               frameon=False)
+    fig.suptitle("BigANT, tripod gait at 0.1 Hz, synthetic (no motion capture): the two laws "
+                 f"end {values['end_distance_m']:.3g} m apart after {path:.3g} m", y=0.995)
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

@@ -1,25 +1,24 @@
 #!/usr/bin/python3
-"""Thesis Fig. 3.8: the metachronal gait's phases and its friction law (synthetic analog).
+"""Thesis Fig. 3.8: the metachronal gait's phases, its friction and its slip (synthetic analog).
 
-Input: DATA/ch3_robots/metachronal_{coulomb,viscous}.csv. Output: OUT/fig3_8.png,
-OUT/values/fig3_8.json.
+Input: DATA/ch3_robots/metachronal_{coulomb,viscous}.csv, tripod_coulomb.csv, and for MuJoCo
+DATA/ch3_peer/fig3_14.csv. Output: OUT/fig3_8.png, OUT/values/fig3_8.json.
 
 (A) each leg's motor shaft angle φ against the gait phase f·t mod 1 (thick: the foot is down;
-four feet are down at any time, §3.5.1.5). (B) |F_xy|/F_z against the slip speed of the feet in
-contact: with the Coulomb run generating the data this is the step of classical Coulomb friction
-(μ for every slipping foot, anything up to μ for a sticking one); the viscous-Coulomb run gives
-the line |F_xy|/F_z = μ|u| of its ansatz (eq. 3.19). The thesis' panel B is F/T data; ours shows
-what each law would put there. Also the slip-velocity percentiles the thesis quotes (5 %, 95 %
-of v_x of the feet in contact).
-
-MuJoCo's BigANT driven by the same feet stands in, labelled so, for the thesis' measured robot
-(DATA/ch3_peer/fig3_14.csv, metachronal base run, §3.5.4): red in (B) are its feet in contact
-carrying at least 2 % of Mg (|F_xy|/F_z of the floor's force from its contacts against the foot
-centre's speed over the floor), and its slip percentiles and feet down go to the values. Without
-that file (a build without MuJoCo) the red points are skipped and the title says so. MuJoCo shows
-no step: its feet creep at a speed that grows with the planar force, well inside the cone (the
-values' mujoco_fit); its own sensitivity blocks show the soft contact causes it (mujoco_creep:
-a softer solref creeps faster under less force, the time step changes nothing).
+four feet are down at any time, §3.5.1.5). (B) the thesis' panel B, |F_xy|/F_z against the slip
+speed of the feet in contact, from which it reads classical Coulomb friction in its F/T data. We
+have no F/T data: MuJoCo's BigANT driven by the same feet stands in for the robot (labelled so,
+in its own colour; DATA/ch3_peer/fig3_14.csv, metachronal base run, §3.5.4), its feet in contact
+carrying at least 2 % of Mg against the Coulomb law's step. Our own runs would only plot their
+input laws back (the step; the line μ|u| of eq. 3.19 in the ansatz' units), so they are checked
+in the values instead (coulomb_is_step, viscous_fit). MuJoCo shows no step: its feet creep at a
+speed that grows with the planar force, well inside the cone (mujoco_fit); its own sensitivity
+blocks show the soft contact causes it (mujoco_creep: a softer solref creeps faster under less
+force, the time step changes nothing). Without MuJoCo's data the panel says so. (C) what the
+thesis quotes from the same data, the slip velocity v_x of the feet in contact (body frame), as
+cumulative distributions: 5 % and 95 % percentiles where the curves cross the dotted lines, for
+both laws, MuJoCo and, for contrast, the tripod; the thesis' percentiles as stars when the claims
+ledger holds them.
 """
 from __future__ import annotations
 
@@ -48,19 +47,30 @@ def contact_slip(run: rb.Run):
     return np.stack(down, axis=1), np.concatenate(sx), np.concatenate(sy), np.concatenate(ratio)
 
 
+def ledger_thesis(claim_id: str):
+    """The thesis' value of a ledger entry, None where the ledger does not hold it."""
+    return next((cl.get("thesis") for cl in c.load_ledger().get("claim", [])
+                 if cl.get("id") == claim_id), None)
+
+
+def cdf(ax, x_mm_s, color, label, ls="-"):
+    x = np.sort(np.asarray(x_mm_s, float))
+    ax.plot(x, (np.arange(x.size) + 0.5) / x.size, color=color, ls=ls, lw=1.8, label=label)
+
+
 def main():
     args = c.parse_args(__doc__.splitlines()[0])
     plt = c.setup_matplotlib()
     k = rb.Run(args.data, "metachronal_coulomb")
     v = rb.Run(args.data, "metachronal_viscous")
+    tri = rb.Run(args.data, "tripod_coulomb")
     freq = float(k.meta.get("scene", {}).get("gait", {}).get("frequency", 0.1))
     values: dict = {"frequency_hz": freq}
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    fig, axes = plt.subplots(1, 3, figsize=(14, 5.4), width_ratios=[1.1, 1, 1])
 
     # (A) shaft angle vs gait phase, stance drawn thick.
     a = axes[0]
     phase = np.mod(freq * k.time, 1.0)
-    cols = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     down_k, sx, sy, ratio = contact_slip(k)
     for i, leg in enumerate(k.legs):
         if f"phase_{leg}" not in k.t.columns:
@@ -70,8 +80,9 @@ def main():
         wrap = np.r_[False, (np.abs(np.diff(phi)) > 0.5) | (np.abs(np.diff(phase)) > 0.5)]
         phi[wrap] = np.nan
         d = down_k[:, i]
-        a.plot(phase, phi, color=cols[i % len(cols)], lw=0.7, label=leg)
-        a.plot(phase, np.where(d, phi, np.nan), color=cols[i % len(cols)], lw=3.0)
+        col = c.CATEGORICAL[i % len(c.CATEGORICAL)]
+        a.plot(phase, phi, color=col, lw=0.8, label=leg)
+        a.plot(phase, np.where(d, phi, np.nan), color=col, lw=3.5)
     feet_down = down_k.sum(axis=1)
     values["feet_down_min"] = int(feet_down.min())
     values["feet_down_max"] = int(feet_down.max())
@@ -79,19 +90,15 @@ def main():
     values["duty_per_leg"] = down_k.mean(axis=0)
     values["duty_mean"] = float(down_k.mean())
     a.set_xlabel("gait phase f·t mod 1")
-    a.set_ylabel("shaft angle φ [turns]")
-    a.set_title(f"(A) shaft angle per leg (thick: stance; {feet_down.min()}–{feet_down.max()} "
-                "feet down)")
-    a.legend(fontsize=7, ncol=2)
+    a.set_ylabel("motor shaft angle φ [turns]")
+    a.set_title(f"(A) shaft angle per leg; thick: stance\n({feet_down.min()}–{feet_down.max()} "
+                f"feet down, mean {feet_down.mean():.2f})")
+    a.legend(ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False,
+             handlelength=1.5, columnspacing=1.0)
 
-    # (B) Coulomb: the step.
+    # The Coulomb run: every slipping foot on the step |F_xy|/F_z = μ (the law, checked here;
+    # plotting it back would show the input law, so panel B shows the stand-in robot instead).
     speed = np.hypot(sx, sy)
-    a = axes[1]
-    a.plot(1e3 * speed, ratio, ".", ms=2, color=rb.COULOMB, alpha=0.5)
-    a.axhline(1.0, color="0.4", lw=0.8, ls=":")
-    a.set_xlabel("slip speed |u| [mm/s]")
-    a.set_ylabel("|F_xy| / F_z")
-    a.set_title("(B) Coulomb run generates the data: a step at μ = 1")
     slipping = speed > MOVING
     values["coulomb_slipping_fraction"] = float(np.mean(slipping))
     values["coulomb_ratio_slipping_max_dev"] = (float(np.max(np.abs(ratio[slipping] - 1.0)))
@@ -103,18 +110,35 @@ def main():
         np.any(slipping) and values["coulomb_ratio_slipping_max_dev"] < 1e-6
         and (values["coulomb_ratio_sticking_max"] is None
              or values["coulomb_ratio_sticking_max"] <= 1.0 + 1e-6))
+    mu = float(np.median(ratio[slipping])) if np.any(slipping) else 1.0  # the run's μ
     # the thesis' statistic: 5 % and 95 % percentiles of v_x of the feet in contact, mm/s
     values["slip_x_p5_mm_s"], values["slip_x_p95_mm_s"] = (float(p) for p in
                                                            np.percentile(1e3 * sx, [5, 95]))
     values["slip_x_p2_5_mm_s"], values["slip_x_p97_5_mm_s"] = (
         float(p) for p in np.percentile(1e3 * sx, [2.5, 97.5]))
     values["slip_speed_median_mm_s"] = float(np.median(1e3 * speed))
+    # the tripod for contrast (§3.5.1.5: "much more slipping than the tripod gait")
+    _, tsx, _, _ = contact_slip(tri)
+    values["tripod_slip_x_p5_mm_s"], values["tripod_slip_x_p95_mm_s"] = (
+        float(p) for p in np.percentile(1e3 * tsx, [5, 95]))
 
-    # MuJoCo as measured: its own contacts, forces and slip, over the part of our run it covers.
+    # The viscous-Coulomb run: |F_xy|/F_z = μ|u| in the ansatz' own units (eq. 3.19).
+    _, vx_, vy_, vratio = contact_slip(v)
+    vspeed = np.hypot(vx_, vy_)
+    fit = c.linfit(vspeed, vratio)
+    values["viscous_fit"] = fit
+    values["viscous_fit_slope"] = fit["k"]
+    values["viscous_slip_x_p5_mm_s"], values["viscous_slip_x_p95_mm_s"] = (
+        float(p) for p in np.percentile(1e3 * vx_, [5, 95]))
+
+    # MuJoCo standing in for the measured robot: its own contacts, forces and slip, over the
+    # part of our run it covers.
     mj = rb.mujoco_until(rb.mujoco_as_measured(args.data, "metachronal"), k.time[-1])
     feet = rb.mujoco_feet(mj, k.legs)
     values["mujoco_as_measured"] = feet is not None
+    a = axes[1]
     if feet is not None:
+        label = mj["label"] + rb.STANDIN
         mdown = np.stack([feet[leg]["contact"] > 0 for leg in k.legs], axis=1)
         mfz = np.stack([feet[leg]["Fz"] for leg in k.legs], axis=1)
         mw = np.sum(mfz, axis=1, keepdims=True)
@@ -125,11 +149,20 @@ def main():
         mratio = np.hypot(np.stack([feet[leg]["Fx"] for leg in k.legs], axis=1),
                           np.stack([feet[leg]["Fy"] for leg in k.legs], axis=1))[loaded] \
             / mfz[loaded]
-        a.plot(1e3 * msp, mratio, ".", ms=3, color=rb.MEASURED, alpha=0.6,
-               label=rb.MEASURED_LABEL)
-        a.legend(fontsize=7, loc="lower right")
-        a.set_title("(B) Coulomb run (blue): a step at μ = 1; red: MuJoCo")
+        # (B) the thesis' panel with the stand-in's feet, against what each law would give
+        a.plot(1e3 * msp, mratio, ".", ms=4, color=c.MUJOCO, alpha=0.5,
+               label=f"{mj['label']}: feet down, > 2 % of Mg")
+        top = 1e3 * max(float(np.max(msp)), 1e-3)
+        a.plot([0, 0, top], [0, mu, mu], color=c.COULOMB, lw=1.8,
+               label=f"Coulomb law: the step at μ = {mu:.3g}")
         mfit = c.linfit(msp, mratio)
+        if mfit["k"] is not None:
+            xs = np.linspace(0, top / 1e3, 2)
+            a.plot(1e3 * xs, mfit["k"] * xs + mfit["b"], color=c.REFERENCE, ls="--", lw=1.3,
+                   label=f"line fit: R² = {mfit['r2']:.2f}")
+        a.set_ylim(-0.03, 1.15 * mu)
+        a.legend(loc="center right")
+        a.set_title(f"(B) |F_xy| / F_z against slip speed:\n{label}")
         values["mujoco_fit"] = mfit
         values["mujoco_slip_x_p5_mm_s"], values["mujoco_slip_x_p95_mm_s"] = (
             float(p) for p in np.percentile(1e3 * msx, [5, 95]))
@@ -141,8 +174,8 @@ def main():
         # Is the creep MuJoCo's soft contact? Its own sensitivity blocks (fig3_14.toml): softer
         # contact (a longer solref time constant) and a shorter time step, metachronal gait.
         creep = []
-        for label in ("base", "solref_timeconst", "timestep"):
-            for run in rb.mujoco_runs(args.data, "metachronal", label):
+        for block in ("base", "solref_timeconst", "timestep"):
+            for run in rb.mujoco_runs(args.data, "metachronal", block):
                 f = rb.mujoco_feet(run, k.legs)
                 if f is None:
                     continue
@@ -159,10 +192,10 @@ def main():
                               "ratio_median": float(np.median(fr[ld] / z[ld]))})
         values["mujoco_creep"] = creep
         values["mujoco_slip_note"] = (
-            f"{rb.MEASURED_LABEL}: ({values['mujoco_slip_x_p5_mm_s']:.1f}, "
+            f"{label}: ({values['mujoco_slip_x_p5_mm_s']:.1f}, "
             f"{values['mujoco_slip_x_p95_mm_s']:.1f}) mm/s over {mj['t'][-1]:.0f} s.")
         values["mujoco_step_note"] = (
-            f"{rb.MEASURED_LABEL}: feet slipping faster than 5 mm/s have median |F_xy|/F_z = "
+            f"{label}: feet slipping faster than 5 mm/s have median |F_xy|/F_z = "
             + (f"{values['mujoco_ratio_slipping_median']:.3g}"
                if values["mujoco_ratio_slipping_median"] is not None else "— (none)")
             + " (μ = 1)"
@@ -178,38 +211,45 @@ def main():
                + " — softer contact creeps faster under less force, the time step changes "
                "nothing: MuJoCo's soft friction constraint, not its integration."))
         values["mujoco_duty_note"] = (
-            f"{rb.MEASURED_LABEL}: {values['mujoco_feet_down_mean']:.3g} feet down on average, "
+            f"{label}: {values['mujoco_feet_down_mean']:.3g} feet down on average, "
             f"duty {values['mujoco_duty_mean']:.3g}.")
     else:
         for key in ("mujoco_slip_note", "mujoco_step_note", "mujoco_duty_note"):
             values[key] = rb.MUJOCO_MISSING + "."
+        a.text(0.5, 0.5, "needs force and slip data of a robot:\nthe thesis' F/T data, or "
+               "MuJoCo's\nBigANT as a stand-in (no MuJoCo\ndata here: see the values)",
+               transform=a.transAxes, ha="center", va="center", color="0.3")
+        a.set_xticks([])
+        a.set_yticks([])
+        a.set_title("(B) |F_xy| / F_z against slip speed")
+    a.set_xlabel("slip speed |u| of the foot [mm/s]")
+    a.set_ylabel("|F_xy| / F_z")
 
-    # (B') viscous-Coulomb: a line of slope mu in its own units.
-    _, vx_, vy_, vratio = contact_slip(v)
-    vspeed = np.hypot(vx_, vy_)
+    # (C) the slip velocities the thesis quotes, as cumulative distributions: its 5 % and 95 %
+    # percentiles read off where the curves cross 0.05 and 0.95.
     a = axes[2]
-    a.plot(1e3 * vspeed, vratio, ".", ms=2, color=rb.VISCOUS, alpha=0.5)
-    fit = c.linfit(vspeed, vratio)
-    values["viscous_fit"] = fit
-    values["viscous_fit_slope"] = fit["k"]
-    if fit["k"] is not None:
-        xs = np.linspace(0, vspeed.max(), 2)
-        a.plot(1e3 * xs, fit["k"] * xs + fit["b"], color="0.2", lw=0.9,
-               label=f"fit: {fit['k']:.3g}·|u| + {fit['b']:.2g} (R² = {fit['r2']:.6f})")
-        a.legend(fontsize=7)
-    a.set_xlabel("slip speed |u| [mm/s]")
-    a.set_ylabel("|F_xy| / F_z  (the ansatz' units: μ|u| in s/m · m/s)")
-    a.set_title("(B) viscous-Coulomb run: the line of eq. 3.19")
-    values["viscous_slip_x_p5_mm_s"], values["viscous_slip_x_p95_mm_s"] = (
-        float(p) for p in np.percentile(1e3 * vx_, [5, 95]))
+    cdf(a, 1e3 * sx, c.COULOMB, "ours, Coulomb")
+    cdf(a, 1e3 * vx_, c.VISCOUS, "ours, viscous-Coulomb")
+    if feet is not None:
+        cdf(a, 1e3 * msx, c.MUJOCO, mj["label"])
+    cdf(a, 1e3 * tsx, c.NEUTRAL, "tripod, ours, Coulomb", ls="--")
+    for q in (0.05, 0.95):
+        a.axhline(q, color="0.5", lw=0.8, ls=":")
+    quoted = ledger_thesis("3.5.1.5-slip-percentiles")
+    if quoted is not None:
+        a.plot(quoted, [0.05, 0.95], "*", color=c.REFERENCE, ms=13,
+               label=f"thesis, BigANT: ({quoted[0]:g}, {quoted[1]:g})")
+    a.set_xlabel("slip velocity v_x of feet down [mm/s]")
+    a.set_ylabel("fraction of foot frames ≤ v_x")
+    a.set_title("(C) slip velocity of feet in contact,\nmetachronal gait (5 %, 95 %: dotted)")
+    a.legend(loc="lower right")
     fig.suptitle("BigANT, metachronal gait, synthetic; slip v_x of feet down, 5–95 %: "
                  f"({values['slip_x_p5_mm_s']:.1f}, {values['slip_x_p95_mm_s']:.1f}) mm/s "
-                 "(Coulomb run)" + (
+                 "(ours, Coulomb)" + (
                      f", ({values['mujoco_slip_x_p5_mm_s']:.1f}, "
-                     f"{values['mujoco_slip_x_p95_mm_s']:.1f}) mm/s (MuJoCo as measured, driven "
-                     "by the same feet)" if feet is not None else "; " + rb.MUJOCO_MISSING),
-                 fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.94))
+                     f"{values['mujoco_slip_x_p95_mm_s']:.1f}) mm/s ({mj['label']})"
+                     if feet is not None else ""))
+    fig.tight_layout()
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
 

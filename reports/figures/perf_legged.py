@@ -31,12 +31,13 @@ STUDY = "ch3_legged"
 CSV = "cost_scaling.csv"
 COLUMNS = ["robot", "N", "method", "eps", "tol", "frames", "repeats", "time_ns", "time_ns_p25",
            "time_ns_p75", "contacts_mean", "iterations_mean", "unconverged"]
-# (key, label, colour, marker), in the order of the legend
-METHODS = [("support", "spring support (Newton route, Alg. 1 fallback)", "C2", "s"),
-           ("connection", "local connection A (eq. 3.20)", "C4", "D"),
-           ("viscous", "viscous-Coulomb balance", "k", "o"),
-           ("model", "whole model (support + A + viscous)", "C3", "v"),
-           ("coulomb_1e-09", "Coulomb balance, certificate ≤ 1e-9", "C0", "^")]
+# (key, label, colour, marker), in the order of the legend; the chapter's colours (common.py):
+# spring support purple, viscous-Coulomb orange, Coulomb blue
+METHODS = [("support", "spring support (Newton route, Alg. 1 fallback)", c.SUPPORT, "s"),
+           ("connection", "local connection A (eq. 3.20)", c.CATEGORICAL[2], "D"),
+           ("viscous", "viscous-Coulomb balance", c.VISCOUS, "o"),
+           ("model", "whole model (support + A + viscous)", c.REFERENCE, "v"),
+           ("coulomb_1e-09", "Coulomb balance, certificate ≤ 1e-9", c.COULOMB, "^")]
 LABEL = {k: lab for k, lab, _, _ in METHODS}
 LABEL.update({"coulomb_1e-10": "Coulomb balance, certificate ≤ 1e-10",
               "epsilon_1e-05": "ε-family, single ε = 1e-5 m/s (thesis §3.5.1.3)"})
@@ -149,7 +150,8 @@ def measure(rows: dict) -> dict:
 
 
 def figure(plt, rows: dict, v: dict, out) -> None:
-    fig, axs = plt.subplots(1, 2, figsize=(11.0, 4.4))
+    # narrow enough to read at the page's narrow width too: the panels one above the other
+    fig, axs = plt.subplots(2, 1, figsize=(7.5, 10), sharex=True)
     disk_n = v["disk_N"]
     for key, label, color, marker in METHODS:
         ns = [n for n in disk_n if ("disk", n, key) in rows]
@@ -159,33 +161,36 @@ def figure(plt, rows: dict, v: dict, out) -> None:
         lo = np.array([rows[("disk", n, key)]["time_ns_p25"] for n in ns]) / 1000.0
         hi = np.array([rows[("disk", n, key)]["time_ns_p75"] for n in ns]) / 1000.0
         axs[0].errorbar(ns, t, yerr=[np.maximum(t - lo, 0), np.maximum(hi - t, 0)], color=color,
-                        marker=marker, ms=4, lw=1.1, capsize=2, label=label)
-        axs[1].plot(ns, t / t[0], color=color, marker=marker, ms=4, lw=1.1, label=label)
+                        marker=marker, ms=5, lw=1.4, capsize=2, label=label)
+        axs[1].plot(ns, t / t[0], color=color, marker=marker, ms=5, lw=1.4)
         hx = rows.get(("hexapod", 6, key))
         if hx:
-            axs[0].plot([6], [hx["time_ns"] / 1000.0], marker="*", ms=11, color=color, mec="k",
-                        mew=0.5, ls="none")
-    axs[0].plot([], [], marker="*", ms=10, color="w", mec="k", ls="none",
+            axs[0].plot([6], [hx["time_ns"] / 1000.0], marker="*", ms=13, color=color, mec="k",
+                        mew=0.6, ls="none")
+    axs[0].plot([], [], marker="*", ms=12, color="w", mec="k", ls="none",
                 label="hexapod (BigANT-like), at N = 6")
     n_ref = np.array([disk_n[0], disk_n[-1]], float)
-    axs[1].plot(n_ref, n_ref / n_ref[0], color="0.6", ls=":", lw=1, label="∝ N")
-    axs[1].axhline(TARGET_GROWTH, color="k", ls="--", lw=0.8, label="target: ×2 at N = 50")
+    axs[1].plot(n_ref, n_ref / n_ref[0], color="0.6", ls=":", lw=1.2, label="∝ N")
+    axs[1].axhline(TARGET_GROWTH, color="k", ls="--", lw=0.9,
+                   label=f"our target: ×{TARGET_GROWTH:g} at N = {disk_n[-1]}")
     down = v.get("disk_down_fraction")
     for ax in axs:
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("legs N (disk robot, 0.3 m rim" +
-                      (f"; on average {down:.0%} of the feet down)" if down else ")"))
         ax.set_xticks(disk_n)
         ax.set_xticklabels([str(n) for n in disk_n])
         ax.minorticks_off()
-    axs[0].set_ylabel("CPU time per frame [µs] (median; bars p25–p75 of repeats)")
-    axs[0].set_title("a) cost per frame")
+    axs[1].set_xlabel("legs N (disk robot, 0.3 m rim" +
+                      (f"; {down:.0%} of the feet down)" if down else ")"))
+    axs[0].set_ylabel("CPU time per frame [µs]")
+    axs[0].set_title("a) cost per frame (median; bars: p25–p75 of repeats)")
     axs[1].set_ylabel(f"cost per frame ÷ cost at N = {disk_n[0]}")
     axs[1].set_title(f"b) growth relative to N = {disk_n[0]}")
-    axs[0].legend(loc="upper left", fontsize=7)
-    axs[1].legend(loc="upper left", fontsize=7)
-    fig.tight_layout()
+    # one legend for the methods (below panel a's curves), one for panel b's references
+    axs[0].legend(loc="upper left", bbox_to_anchor=(0.0, -0.02), ncol=1, frameon=False)
+    axs[1].legend(loc="upper left")
+    fig.tight_layout(h_pad=0.5)
+    fig.subplots_adjust(hspace=0.56)
     c.save_figure(fig, out, NAME)
 
 

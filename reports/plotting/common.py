@@ -265,6 +265,27 @@ def setup_matplotlib():
 
 
 # ---------------------------------------------------------------------------------------------
+# Palette of the chapter-3 figures: one meaning per colour, the thesis' own where its captions
+# state one. Figs. 3.5-3.10: viscous-Coulomb orange, Coulomb blue, spring support purple,
+# measurements (motion capture, F/T) red; Fig. 3.11: the model's estimate blue; Fig. 3.12: the
+# estimate orange, filtered blue. Fig. 3.14 drew MuJoCo orange and the thesis' model blue, which
+# would clash with Figs. 3.5-3.10; MuJoCo gets a colour of its own here instead.
+
+VISCOUS = "tab:orange"    # the viscous-Coulomb ansatz (eq. 3.19)
+COULOMB = "tab:blue"      # classical Coulomb friction (and the ε-family's Coulomb end)
+SUPPORT = "tab:purple"    # the spring support: roll, pitch, F_z (eq. 3.6, Alg. 1)
+ESTIMATE = "tab:blue"     # Fig. 3.11: the model's estimate of a Multipod
+FILTERED = "tab:blue"     # Fig. 3.12: the estimate through the IIR filter (§3.5.2.2)
+MUJOCO = "tab:green"      # MuJoCo, the peer simulator, also where it stands in for the robot
+MEASURED = "tab:red"      # the thesis' measurements: we have none, so no data of ours is drawn red
+REFERENCE = "0.15"        # a law, closed form, target or bound drawn for reference
+NEUTRAL = "0.45"          # a difference of two of our runs, a spread, a secondary curve
+# Series without a thesis meaning (legs, feet, distributions, robot sizes, components): none of
+# the colours above, so that orange, blue, purple, green and red keep theirs.
+CATEGORICAL = ("tab:cyan", "tab:olive", "tab:brown", "tab:pink", "0.3", "0.62")
+
+
+# ---------------------------------------------------------------------------------------------
 # Fits
 
 

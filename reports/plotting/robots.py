@@ -14,8 +14,6 @@ import numpy as np
 import common as c
 
 STUDY = "ch3_robots"
-# The thesis' colours: viscous-Coulomb orange, Coulomb blue, spring support purple.
-VISCOUS, COULOMB, SUPPORT = "tab:orange", "tab:blue", "tab:purple"
 
 
 class Run:
@@ -58,14 +56,21 @@ class Run:
 
 
 # MuJoCo's BigANT driven by our feet stands in for the robot where the thesis drew motion capture
-# (§3.5.4): the base runs of studies/ch3_peer/fig3_14.toml (same gait, K, μ as these scenes).
-MEASURED = "tab:red"
-MEASURED_LABEL = "MuJoCo (as measured)"
+# and F/T data (§3.5.4): the base runs of studies/ch3_peer/fig3_14.toml (same gait, K, μ as these
+# scenes), drawn in common.MUJOCO (not the thesis' red: it is not a measurement).
+STANDIN = " (stand-in for the measured robot)"
+
+
+def mujoco_label(peer: str | None) -> str:
+    """The peer's name and version as the data name it ("mujoco 2.2.2" -> "MuJoCo 2.2.2")."""
+    peer = str(peer or "mujoco").strip()
+    return "MuJoCo" + peer[len("mujoco"):] if peer.lower().startswith("mujoco") else peer
 
 
 LEG_COLUMNS = ("contact", "Fz", "Fx", "Fy", "slip_x", "slip_y")
 MUJOCO_MISSING = ("no MuJoCo data (a build without MuJoCo, `slipwalk reproduce ch3_peer` not run, "
                   "or a fig3_14.csv without per-leg columns): the MuJoCo overlay is skipped")
+MUJOCO_MISSING_TITLE = "no MuJoCo data (see the values): its lines are left out"
 
 
 def body_velocity(t, x, y, theta) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -81,7 +86,7 @@ def mujoco_runs(data: Path, gait: str, label: str) -> list[dict]:
     path = data / "ch3_peer" / "fig3_14.csv"
     if not path.is_file():
         return []
-    t = c.Table(path, ["id", "gait", "source", "label", "t"])
+    t = c.Table(path, ["id", "gait", "source", "label", "t", "peer"])
     on = ((t.str("gait") == gait) & (t.str("source") == "mujoco") & (t.str("label") == label)
           & np.isfinite(t["t"]))
     runs = []
@@ -100,6 +105,7 @@ def _mujoco_run(t: c.Table, on: np.ndarray) -> dict | None:
     order = np.argsort(t["t"][on])
     m = {k: t[k][on][order] for k in ("t", "x", "y", "theta")}
     m["vx"], m["vy"], m["omega"] = body_velocity(m["t"], m["x"], m["y"], m["theta"])
+    m["label"] = mujoco_label(t.str("peer")[on][0])
     names = [col[len("Fz_"):] for col in t.columns if col.startswith("Fz_")]
     names = [leg for leg in names if all(f"{w}_{leg}" in t.columns for w in LEG_COLUMNS)]
     if names:
@@ -109,15 +115,16 @@ def _mujoco_run(t: c.Table, on: np.ndarray) -> dict | None:
 
 def mujoco_as_measured(data: Path, gait: str) -> dict | None:
     """MuJoCo's base run of `gait` from DATA/ch3_peer/fig3_14.csv: t, x, y, theta and the body
-    velocity (vx, vy in the body frame, omega) by central differences of the sampled poses; with
-    per-leg columns (sweeps/points/peer_bigant.cpp) also "legs": {leg: {contact, Fz, Fx, Fy,
-    slip_x, slip_y}} (forces of the floor on the foot, N, and the foot's velocity over the floor,
+    velocity (vx, vy in the body frame, omega) by central differences of the sampled poses, and
+    "label", the peer's name and version as the data give it ("MuJoCo 2.2.2"); with per-leg
+    columns (sweeps/points/peer_bigant.cpp) also "legs": {leg: {contact, Fz, Fx, Fy, slip_x,
+    slip_y}} (forces of the floor on the foot, N, and the foot's velocity over the floor,
     m/s, body frame, as our runs' columns). None when the file or its MuJoCo rows are missing (a
     build without MuJoCo, or ch3_peer not run)."""
     path = data / "ch3_peer" / "fig3_14.csv"
     if not path.is_file():
         return None
-    t = c.Table(path, ["gait", "source", "label", "t", "x", "y", "theta"])
+    t = c.Table(path, ["gait", "source", "label", "t", "x", "y", "theta", "peer"])
     on = ((t.str("gait") == gait) & (t.str("source") == "mujoco") & (t.str("label") == "base")
           & np.isfinite(t["t"]))
     return _mujoco_run(t, on)
@@ -137,7 +144,8 @@ def mujoco_until(mj: dict | None, t_end: float) -> dict | None:
     on = mj["t"] <= t_end + 1e-9
     if np.count_nonzero(on) < 3:
         return None
-    out = {k: v[on] for k, v in mj.items() if k != "legs"}
+    out = {k: v[on] for k, v in mj.items() if k not in ("legs", "label")}
+    out["label"] = mj["label"]
     if "legs" in mj:
         out["legs"] = {leg: {w: a[on] for w, a in cols.items()} for leg, cols in mj["legs"].items()}
     return out
@@ -157,10 +165,6 @@ def velocity_at(run: Run, times: np.ndarray) -> dict:
     x, y, th = (nearest(run, k, times) for k in ("x", "y", "theta"))
     vx, vy, om = body_velocity(times, x, y, th)
     return {"vx": vx, "vy": vy, "omega": om}
-
-
-def note_synthetic(fig, text: str) -> None:
-    fig.text(0.5, 0.003, text, ha="center", va="bottom", fontsize=7, color="0.35")
 
 
 def rms(x: np.ndarray) -> float:
@@ -196,4 +200,4 @@ def flat_zero(ax, y, unit: str, what: str = "mirror-symmetric gait") -> None:
     if lim < 1e-9:
         ax.set_ylim(-1.0, 1.0)
         ax.text(0.5, 0.75, f"≡ 0 to rounding ({lim:.0e} {unit}): {what}",
-                transform=ax.transAxes, ha="center", fontsize=7.5, color="0.3")
+                transform=ax.transAxes, ha="center", color="0.3")
