@@ -391,9 +391,9 @@ sampled once per decade.</p>
 <details><summary>Every run</summary>{all_table}</details>
 <p class="small">From <code>DATA/cost_of_accuracy/{CSV}</code> (spec
 <code>studies/cost_of_accuracy/friction.toml</code>, point kind <code>legged_cost</code>) by
-<code>reports/{NAME}.py</code>; numbers in <code>values/{NAME}.json</code>. The per-frame cost
+<code>reports/figures/{NAME}.py</code>; numbers in <code>values/{NAME}.json</code>. The per-frame cost
 against the number of legs and our per-frame cost targets: the index's
-<a href="index.html#perf-legged">performance section</a>.</p>
+<a href="performance.html#perf-legged">performance page</a>.</p>
 </section>
 """
 

@@ -849,7 +849,7 @@ rule on the cycle average). At the thesis' 1e-4:</p>
 <section id="coa-pick"><h2>Which method to pick</h2>
 {paras}
 <p class="small">Numbers on this page come from <code>values/{NAME}.json</code>, written by
-<code>reports/{NAME}.py</code> from <code>DATA/cost_of_accuracy/*.csv</code>; the specs are in
+<code>reports/figures/{NAME}.py</code> from <code>DATA/cost_of_accuracy/*.csv</code>; the specs are in
 <code>studies/cost_of_accuracy/</code>.</p>
 </section>
 """

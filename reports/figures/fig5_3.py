@@ -42,7 +42,7 @@ STUDY = "ch5_terrain"
 LEGS = {"FL": "tab:blue", "ML": "tab:orange", "HL": "tab:purple"}  # the thesis' colours
 ALL_LEGS = ("HL", "ML", "FL", "HR", "MR", "FR")
 BODY = "black"
-LAWS = {"viscous": ("viscous-Coulomb", rb.VISCOUS), "coulomb": ("Coulomb", rb.COULOMB)}
+LAWS = {"viscous": ("viscous-Coulomb", c.VISCOUS), "coulomb": ("Coulomb", c.COULOMB)}
 BACKSLIDE_LIMIT = 0.1  # of the flat progress per cycle
 JUMP_LIMIT = 0.1       # of the riser of the thesis' stairs, per frame
 

@@ -279,7 +279,7 @@ balance of the same run; mean solver iterations, or spring-support contact chang
 <details><summary>Disk robots: every N</summary><table class='data'><thead><tr><th>N</th>
 <th>feet down (mean)</th>{head}</tr></thead><tbody>{''.join(disk_rows)}</tbody></table>
 </details>
-<p class="small">From <code>DATA/{STUDY}/{CSV}</code> by <code>reports/{NAME}.py</code>; numbers in
+<p class="small">From <code>DATA/{STUDY}/{CSV}</code> by <code>reports/figures/{NAME}.py</code>; numbers in
 <code>values/{NAME}.json</code>. What each friction solver's accuracy costs: the
 <a href="cost_of_accuracy.html#coa-legged">cost of accuracy</a> page.</p>
 </div></div>

@@ -78,7 +78,7 @@ isotropic law, not a separate path).</p>
 <table class='data'><thead><tr><th>case</th><th>kernel</th><th>ns / step</th><th>p25 – p75</th>
 <th>÷ hand-written</th><th>extra ns / step</th><th>share of flat</th></tr></thead>
 <tbody>{table}</tbody></table>
-<p class="small">From <code>DATA/{STUDY}/{CSV}</code> by <code>reports/{NAME}.py</code>; numbers in
+<p class="small">From <code>DATA/{STUDY}/{CSV}</code> by <code>reports/figures/{NAME}.py</code>; numbers in
 <code>values/{NAME}.json</code>. The same cases as a Google Benchmark:
 <code>build/bin/bench_scene</code>.</p>
 </div></div>

@@ -68,7 +68,7 @@ tr.bad td,td.bad{background:#fde8e8}
 .small{font-size:.85em;color:#555}
 .regen{font-size:.85em;color:#555;margin:6px 0 0}
 .regen code{white-space:pre-wrap;overflow-wrap:anywhere}
-code{background:#eef;padding:0 3px;overflow-wrap:anywhere}
+code{background:#eef;padding:0 3px;overflow-wrap:anywhere;font-size:max(.9em,11px)}
 pre{overflow-x:auto;max-width:100%}
 details{margin:4px 0}
 form.filters{margin:8px 0}
@@ -200,8 +200,7 @@ class Build:
 
     def chapters(self) -> list[str]:
         found = {self.chapter_of(c) for c in self.claims}
-        return list(CHAPTERS) + sorted(found - set(CHAPTERS) - {""},
-                                       key=lambda s: int(s)) + (["—"] if "" in found else [])
+        return sorted(set(CHAPTERS) | (found - {""}), key=int) + (["—"] if "" in found else [])
 
 
 # ---------------------------------------------------------------------------------------------
