@@ -26,7 +26,9 @@ def main() -> int:
     ap.add_argument("--narrow-px", type=float, default=700)
     args = ap.parse_args()
     registry = tomllib.loads((REPO / "data" / "thesis" / "figures.toml").read_text())
-    wide = {f["script"] for f in registry["figure"] if f.get("wide")}
+    # a script's images: <script>.png, or the `images` it declares (Path(...).stem per PNG)
+    wide = {Path(img).stem for f in registry["figure"] if f.get("wide")
+            for img in f.get("images", [f"{f['script']}.png"])}
     rows = []
     for p in sorted((args.out / "layout").glob("*.json")):
         lay = json.loads(p.read_text())

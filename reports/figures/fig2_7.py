@@ -102,6 +102,7 @@ def main():
         values["analytic_vs_exact_class_disagreements"] = stop_diff + reg_diff
     else:
         values["analytic_vs_exact_max_rel_diff"] = None
+        values["analytic_vs_exact_pairs"] = 0
         values["analytic_vs_exact_max_rel_diff_reason"] = values.get(
             "dm_exact_unavailable_reason", "no exact rows")
 
