@@ -10,7 +10,6 @@ F = μ_s M g and αF = μ g (2m + Δm). Output: OUT/regime_map.png, OUT/values/r
 """
 from __future__ import annotations
 
-import math
 import sys
 from pathlib import Path
 
@@ -28,22 +27,6 @@ CLASSES = [  # (regime, stopped) -> label, colour (blues and greens: red marks m
     ((2, 1), "two masses moving, stop during swap", "#a1d99b"),
     ((2, 0), "two masses moving, no stop", "#238b45"),
 ]
-
-
-def log_ticks(axis, lo: float, hi: float) -> None:
-    """Labelled ticks on a log axis that may span less than a decade: 1-2-5 per decade, or
-    1-1.5-2-3-5-7 when that leaves fewer than four, printed as plain numbers."""
-    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
-
-    decades = range(math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1)
-    for mantissas in ((1, 2, 5), (1, 1.5, 2, 3, 5, 7)):
-        ticks = [mt * 10.0**e for e in decades for mt in mantissas]
-        ticks = [v for v in ticks if lo <= v <= hi]
-        if len(ticks) >= 4:
-            break
-    axis.set_major_locator(FixedLocator(ticks))
-    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-    axis.set_minor_formatter(NullFormatter())
 
 
 def class_index(regime: np.ndarray, stopped: np.ndarray) -> np.ndarray:
@@ -183,8 +166,8 @@ def main():
         ax.set_yscale("log")
         ax.set_xlim(edges(Fs)[0], edges(Fs)[-1])
         ax.set_ylim(edges(As)[0], edges(As)[-1])
-        log_ticks(ax.xaxis, *ax.get_xlim())
-        log_ticks(ax.yaxis, *ax.get_ylim())
+        c.log_ticks(ax.xaxis, *ax.get_xlim())
+        c.log_ticks(ax.yaxis, *ax.get_ylim())
         ax.set_xlabel("F [N]")
         ax.set_ylabel("α  (F_Δm = αF)")
         k = f"mu{mu:g}"

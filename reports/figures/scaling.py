@@ -9,7 +9,6 @@ same μ divided by √μ, which fan out. Output: OUT/scaling.png, OUT/values/sca
 """
 from __future__ import annotations
 
-import math
 import sys
 from pathlib import Path
 
@@ -19,22 +18,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the
 import common as c  # noqa: E402
 
 NAME = "scaling"
-
-
-def log_ticks(axis, lo: float, hi: float) -> None:
-    """Labelled ticks on a log axis, also one spanning about a decade: 1-2-5 per decade, or
-    1-1.5-2-3-5-7 when that leaves fewer than four, printed as plain numbers."""
-    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
-
-    decades = range(math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1)
-    for mantissas in ((1, 2, 5), (1, 1.5, 2, 3, 5, 7)):
-        ticks = [mt * 10.0**e for e in decades for mt in mantissas]
-        ticks = [v for v in ticks if lo <= v <= hi]
-        if len(ticks) >= 4:
-            break
-    axis.set_major_locator(FixedLocator(ticks))
-    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-    axis.set_minor_formatter(NullFormatter())
 
 
 def main():
@@ -102,8 +85,8 @@ def main():
                      if spread is not None else "(b) collapse")
     axs[1].legend(loc="lower right")
     for ax in axs:
-        log_ticks(ax.xaxis, *ax.get_xlim())
-    log_ticks(axs[1].yaxis, *axs[1].get_ylim())
+        c.log_ticks(ax.xaxis, *ax.get_xlim())
+    c.log_ticks(axs[1].yaxis, *axs[1].get_ylim())
     fig.tight_layout()
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

@@ -285,6 +285,22 @@ NEUTRAL = "0.45"          # a difference of two of our runs, a spread, a seconda
 CATEGORICAL = ("tab:cyan", "tab:olive", "tab:brown", "tab:pink", "0.3", "0.62")
 
 
+def log_ticks(axis, lo: float, hi: float) -> None:
+    """Labelled ticks on a log axis that may span less than a decade: 1-2-5 per decade, or
+    1-1.5-2-3-5-7 when that leaves fewer than four, printed as plain numbers."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+    decades = range(math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1)
+    for mantissas in ((1, 2, 5), (1, 1.5, 2, 3, 5, 7)):
+        ticks = [mt * 10.0**e for e in decades for mt in mantissas]
+        ticks = [v for v in ticks if lo <= v <= hi]
+        if len(ticks) >= 4:
+            break
+    axis.set_major_locator(FixedLocator(ticks))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
 # ---------------------------------------------------------------------------------------------
 # Fits
 
