@@ -237,8 +237,9 @@ def main():
         a.axhline(q, color="0.5", lw=0.8, ls=":")
     quoted = ledger_thesis("3.5.1.5-slip-percentiles")
     if quoted is not None:
-        a.plot(quoted, [0.05, 0.95], "*", color=c.REFERENCE, ms=13,
-               label=f"thesis, BigANT: ({quoted[0]:g}, {quoted[1]:g})")
+        # the thesis' measured percentiles: red, the colour the thesis gives its measurements
+        a.plot(quoted, [0.05, 0.95], "*", color=c.MEASURED, ms=13,
+               label=f"thesis, BigANT measured: ({quoted[0]:g}, {quoted[1]:g})")
     a.set_xlabel("slip velocity v_x of feet down [mm/s]")
     a.set_ylabel("fraction of foot frames ≤ v_x")
     a.set_title("(C) slip velocity of feet in contact,\nmetachronal gait (5 %, 95 %: dotted)")
