@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/json_input.hpp"
 
 namespace slipwalk::contact {
 
@@ -11,38 +12,8 @@ namespace {
 using core::InputError;
 using nlohmann::json;
 
-/// "<source>:<line>:<col>" of a byte offset (1-based, as nlohmann reports it).
-std::string position(std::string_view text, std::size_t byte, const std::string& source) {
-  std::size_t line = 1;
-  std::size_t col = 1;
-  for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  std::string where = source;
-  where.append(":").append(std::to_string(line)).append(":").append(std::to_string(col));
-  return where;
-}
-
 json parse_object(std::string_view text, const std::string& source) {
-  json doc;
-  try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    const auto colon = what.rfind(": ");
-    what = colon == std::string::npos ? what : what.substr(colon + 2);
-    throw InputError(position(text, e.byte, source), "malformed JSON: " + what);
-  } catch (const json::exception& e) {  // e.g. a number too large for a double
-    std::string what = e.what();
-    const auto bracket = what.find("] ");
-    throw InputError(
-        source, "bad JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
-  }
+  json doc = core::parse_json(text, source);
   if (!doc.is_object()) {
     throw InputError(source, "expected a JSON object");
   }
@@ -61,7 +32,7 @@ std::string key_at(const std::string& source, const char* key, int j = -1) {
 
 double number(const json& v, const std::string& where) {
   if (!v.is_number()) {
-    throw InputError(where, "expected a number, got " + v.dump());
+    throw InputError(where, "expected a number, got " + core::json_excerpt(v));
   }
   const double x = v.get<double>();
   if (!std::isfinite(x)) {
@@ -74,7 +45,7 @@ double number(const json& v, const std::string& where) {
 const json& array_of(const json& doc, const char* key, const std::string& source) {
   const json& a = doc.at(key);
   if (!a.is_array()) {
-    throw InputError(key_at(source, key), "expected an array, got " + a.dump());
+    throw InputError(key_at(source, key), "expected an array, got " + core::json_excerpt(a));
   }
   return a;
 }
@@ -90,8 +61,8 @@ void read_vectors(const json& doc, const char* key, const std::string& source, i
   for (int j = 0; j < n; ++j) {
     const json& v = a[static_cast<std::size_t>(j)];
     if (!v.is_array() || static_cast<int>(v.size()) != width) {
-      throw InputError(key_at(source, key, j),
-                       "expected " + std::to_string(width) + " numbers, got " + v.dump());
+      throw InputError(key_at(source, key, j), "expected " + std::to_string(width) +
+                                                   " numbers, got " + core::json_excerpt(v));
     }
     for (int i = 0; i < width; ++i) {
       out(i, j) = number(v[static_cast<std::size_t>(i)], key_at(source, key, j));
@@ -128,7 +99,9 @@ void check_keys(const json& doc, const std::string& source,
         list += list.empty() ? "" : ", ";
         list += a;
       }
-      throw InputError(key_at(source, k.c_str()), "unknown key; expected " + list);
+      // A key is quoted as an excerpt: it may be any length.
+      throw InputError(key_at(source, core::text_excerpt(k).c_str()),
+                       "unknown key; expected " + list);
     }
   }
 }

@@ -5,7 +5,8 @@
 //         "w": [[wx,wy],...], "theta": 0.0}      (K, mu, w, theta, Mg optional: 1, 1, 0, 0, 1)
 //   out: {"alpha","beta","z","contact":[bool..],"Fz":[..],"v_body":[vx,vy,wz],
 //         "Fxy":[[fx,fy]..],"A":[[..]..] | null, "support":{..}, "friction":{..}}
-// Errors are core::InputError whose `where` is "<source>:<line>:<col>" for malformed JSON and
+// Errors are core::InputError whose `where` is "<source>:<line>:<col>" for malformed JSON (read
+// by core::parse_json, which also refuses deep nesting, long texts and duplicate keys) and
 // "<source>: <key>[j]" for a bad value.
 #include <nlohmann/json.hpp>
 #include <string>

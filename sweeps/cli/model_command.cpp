@@ -1,6 +1,7 @@
 // slipwalk model: one frame of the multi-legged model (thesis ch. 3) in the frame format of
 // DESIGN.md, or a CSV batch of frames (one per row) for trajectories; the work is
 // connection/frame_model.hpp's, this file parses the options and writes the text.
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -11,6 +12,7 @@
 #include "contact/frame_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/json_input.hpp"
 #include "scene/friction_laws.hpp"
 #include "sweeps/cli/commands.hpp"
 
@@ -68,11 +70,14 @@ struct ModelCommand {
     const connection::FrictionLaw law = friction_law(friction);
     const std::string source = in == "-" ? "<stdin>" : in;
     if (robot.empty()) {
-      emit(out, connection::evaluate_frame_json(read_all(in), source, law));
+      const std::string text = in == "-" ? core::read_json_text(std::cin, source)
+                                         : core::read_json_text(std::filesystem::path(in));
+      emit(out, connection::evaluate_frame_json(text, source, law));
       return;
     }
     // A robot file switches to the CSV batch form; the robot is read first.
-    const contact::Robot r = contact::parse_robot_json(read_all(robot), robot);
+    const contact::Robot r =
+        contact::parse_robot_json(core::read_json_text(std::filesystem::path(robot)), robot);
     emit(out, connection::evaluate_frame_batch(r, read_all(in), source, law));
   }
 };

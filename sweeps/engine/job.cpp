@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/json_input.hpp"
 #include "core/provenance.hpp"
 #include "inchworm/trace_file.hpp"
 #include "scene/run_writer.hpp"
@@ -28,10 +30,12 @@ nlohmann::json finished_sidecar(const fs::path& csv) {
   if (!fs::is_regular_file(csv) || !fs::is_regular_file(json)) {
     return nullptr;
   }
-  std::ifstream in(json, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  nlohmann::json sidecar = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+  nlohmann::json sidecar;
+  try {
+    sidecar = core::parse_json(core::read_json_text(json), json.string());
+  } catch (const core::InputError&) {  // a sidecar we cannot trust: the job runs again
+    return nullptr;
+  }
   const nlohmann::json build = core::build_provenance();
   if (!sidecar.is_object() || !sidecar.contains("provenance") ||
       sidecar["provenance"].value("git_commit", "") != build.value("git_commit", "") ||

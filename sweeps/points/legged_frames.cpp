@@ -27,6 +27,7 @@
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
 #include "core/error.hpp"
+#include "core/json_input.hpp"
 #include "friction/planar_forces.hpp"
 #include "friction/solvers.hpp"
 #include "sweeps/engine/point_kind.hpp"
@@ -54,14 +55,8 @@ contact::FrameInput read_robot(const Reader& r, std::string_view key, std::strin
   name = *file;
   const std::filesystem::path path =
       std::filesystem::path(r.point().source).parent_path() / std::filesystem::path(*file);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    r.fail(key, "cannot read the robot file " + path.string());
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
   try {
-    return contact::parse_frame_json(text.str(), path.string());
+    return contact::parse_frame_json(core::read_json_text(path), path.string());
   } catch (const InputError& e) {
     r.fail(key, std::string("bad robot file: ") + e.what());
   }

@@ -99,5 +99,60 @@ TEST(CliModel, BadInputExits2NamingThePlaceAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+TEST(CliModel, DeepOrDuplicatedJsonExits2NamingTheFileAndWritesNothing) {
+  const ScratchDir dir;
+  const auto out = dir / "out.json";
+  const auto frame = dir / "deep.json";
+  // Nesting under "q" (the value the frame reader looks into first), of every depth class.
+  for (const int depth : {65, 1000, 70000, 100000}) {
+    for (const bool objects : {false, true}) {
+      std::string text = R"({"qdot": [[0, 0, 0]], "q": )";
+      for (int i = 0; i < depth; ++i) {
+        text += objects ? R"({"a": )" : "[";
+      }
+      text += "0";
+      for (int i = 0; i < depth; ++i) {
+        text += objects ? '}' : ']';
+      }
+      text += "}";
+      write_text(frame, text);
+      const CommandResult r =
+          run_slipwalk({"model", "--in", frame.string(), "--out", out.string()});
+      EXPECT_EQ(r.exit_code, 2) << depth << r.err;
+      EXPECT_NE(r.err.find(frame.string() + ":1:"), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("nested deeper than"), std::string::npos) << r.err;
+      EXPECT_LT(r.err.size(), 400U);
+      EXPECT_FALSE(std::filesystem::exists(out));
+    }
+  }
+  // A robot file (batch mode) and a frame file with a key given twice, on line 2 or deeper.
+  const auto robot = dir / "robot.json";
+  write_text(dir / "frames.csv", "theta,q0x,q0y,q0z,qd0x,qd0y,qd0z\n0,0,0,-1,0,0,0\n");
+  const auto csv_out = dir / "out.csv";
+  struct Case {
+    std::string text;
+    std::string where;
+  };
+  for (const Case& c :
+       std::vector<Case>{{"{\"K\": [1],\n \"Mg\": 2, \"K\": [3]}", ":2:11"},
+                         {"{\"legs\": 1,\n\n   \"legs\": 2}", ":3:4"},
+                         {"{\"K\": [1], \"w\": [{\"x\": 1, \"x\": 2}]}", ":1:27"}}) {
+    write_text(robot, c.text);
+    const CommandResult r =
+        run_slipwalk({"model", "--robot", robot.string(), "--in", (dir / "frames.csv").string(),
+                      "--out", csv_out.string()});
+    EXPECT_EQ(r.exit_code, 2) << c.text;
+    EXPECT_NE(r.err.find(robot.string() + c.where + ": duplicate key"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(csv_out));
+  }
+  write_text(frame, "{\"q\": [[0, 0, -1]], \"qdot\": [[0, 0, 0]],\n \"q\": [[0, 0, -2]]}");
+  const CommandResult dup = run_slipwalk({"model", "--in", frame.string(), "--out", out.string()});
+  EXPECT_EQ(dup.exit_code, 2);
+  EXPECT_NE(dup.err.find(frame.string() + ":2:2: duplicate key \"q\" (first at 1:2)"),
+            std::string::npos)
+      << dup.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 }  // namespace
 }  // namespace slipwalk::cli

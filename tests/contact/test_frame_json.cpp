@@ -54,7 +54,7 @@ TEST(FrameJson, BadValuesNameTheKeyAndLeg) {
   EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "speed": 3, )" + qd + "}"), "f.json: speed");
   EXPECT_EQ(where_of(R"({"qdot": [[0,0,0]]})"), "f.json: q");
   EXPECT_EQ(where_of(R"({"q": [], "qdot": []})"), "f.json: q");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,1e999]], "qdot": [[0,0,0]]})"), "f.json");  // overflow
+  EXPECT_EQ(where_of(R"({"q": [[0,0,1e999]], "qdot": [[0,0,0]]})"), "f.json:1:17");  // overflow
 }
 
 TEST(FrameJson, RobotAloneForBatches) {

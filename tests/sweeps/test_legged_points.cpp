@@ -274,6 +274,11 @@ TEST(LeggedForceMap, CheckRejectsBadKeysAndFiles) {
   expect_rejected(kind, "[params]\nn = 5\n", "robot", spec);
   expect_rejected(kind, "[params]\nrobot = \"missing.json\"\n", "robot", spec);
   expect_rejected(kind, "[params]\nrobot = \"bad.json\"\n", "K[0]", spec);
+  // The robot file goes through the one JSON reader: nesting and duplicate keys are refused.
+  write_text(dir / "deep.json", std::string(70000, '[') + std::string(70000, ']'));
+  expect_rejected(kind, "[params]\nrobot = \"deep.json\"\n", "deep.json:1:65: JSON nested", spec);
+  write_text(dir / "dup.json", R"({"q": [[0, 0, -1]], "qdot": [[0, 0, 0]], "qdot": []})");
+  expect_rejected(kind, "[params]\nrobot = \"dup.json\"\n", "dup.json:1:42: duplicate key", spec);
   expect_rejected(kind, "[params]\nrobot = \"square.json\"\nvx_min = 1\n", "vx_max", spec);
   expect_rejected(kind, "[params]\nrobot = \"square.json\"\nvx_min = 1\nvx_max = 0\n", "vx_max",
                   spec);
