@@ -1,6 +1,8 @@
 // slipwalk model: one frame of the multi-legged model (thesis ch. 3) in the frame format of
 // DESIGN.md, or a CSV batch of frames (one per row) for trajectories; the work is
 // connection/frame_model.hpp's, this file parses the options and writes the text.
+#include <array>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -51,7 +53,7 @@ connection::FrictionLaw friction_law(const std::string& name) {
 
 /// Writes `text` to --out (atomically) or stdout.
 void emit(const std::string& out, const std::string& text) {
-  if (out.empty() || out == "-") {
+  if (out == "-") {
     std::cout << text;
     return;
   }
@@ -62,10 +64,14 @@ struct ModelCommand {
   std::string friction = "viscous";
   std::string in = "-";
   std::string robot;  // a robot file switches to CSV batch mode
-  std::string out;
+  std::string out = "-";
 
   void run() const {
     const connection::FrictionLaw law = friction_law(friction);
+    if (out != "-") {
+      const std::array<std::filesystem::path, 2> inputs{in, robot};
+      core::check_output_path(out, "--out", inputs);
+    }
     const std::string source = in == "-" ? "<stdin>" : in;
     if (robot.empty()) {
       emit(out, connection::evaluate_frame_json(read_all(in), source, law));
@@ -92,7 +98,8 @@ void add_model_command(CLI::App& app) {
                   "--robot; - for stdin (default)");
   sub->add_option("--robot", cmd->robot,
                   "robot JSON {K, mu, w, Mg | legs}: read --in as a CSV batch, one frame a row");
-  sub->add_option("--out", cmd->out, "write here instead of stdout (written whole or not at all)");
+  sub->add_option("--out", cmd->out,
+                  "write here instead of stdout (written whole or not at all; - for stdout)");
   sub->callback([cmd] { cmd->run(); });
 }
 
