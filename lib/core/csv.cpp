@@ -1,10 +1,14 @@
 #include "core/csv.hpp"
 
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
+
+#include "core/error.hpp"
 
 namespace slipwalk::core {
 
@@ -74,6 +78,11 @@ void CsvWriter::end_row() {
   }
   out_ << '\n';
   in_row_ = 0;
+  // A failed write (a full disk, a closed pipe) stops the writer at once rather than after a
+  // run's worth of rows into a stream that discards them.
+  if (!out_) {
+    throw ComputationError(std::string("writing CSV rows failed: ") + std::strerror(errno));
+  }
 }
 
 }  // namespace slipwalk::core

@@ -20,6 +20,7 @@ class CsvWriter {
   CsvWriter& cell(long long value);
   CsvWriter& cell(int value) { return cell(static_cast<long long>(value)); }
   CsvWriter& cell(std::string_view text);
+  /// Ends the row; throws ComputationError once the stream has failed (a full disk).
   void end_row();
 
  private:

@@ -108,7 +108,7 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
     }
   });
   result.wall_s = core::seconds_since(start);
-  file.commit();
+  file.finish();
 
   // The provenance sidecar.
   nlohmann::json sidecar = extra.is_object() ? extra : nlohmann::json::object();
@@ -132,7 +132,12 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
       {"threads", 1},
       {"provenance", core::build_provenance()},
   });
-  core::write_file_atomically(sidecar_path, sidecar.dump(1) + "\n");
+  // Both files are complete before either is renamed: a failure leaves neither behind.
+  core::AtomicFile side(sidecar_path);
+  side.stream() << sidecar.dump(1) << "\n";
+  side.finish();
+  file.commit();
+  side.commit();
   return result;
 }
 

@@ -4,11 +4,11 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "inchworm/params.hpp"
 #include "inchworm/trace.hpp"
@@ -215,17 +215,14 @@ struct TraceCommand {
       throw InputError("--dt", "must be positive, got '" + dt + "'");
     }
     opt.rtol = parse_rtol(rtol);
-    if (out.empty()) {
-      throw InputError("--out", "expected a file name (or - for stdout)");
+    if (out != "-") {
+      core::check_output_path(out, "--out");
     }
     gsl_set_error_handler_off();
     if (out == "-") {
       inchworm::write_trace(p, m, opt, std::cout);
       std::cout.flush();
       return;
-    }
-    if (std::filesystem::is_directory(out)) {
-      throw InputError("--out", "'" + out + "' is a directory");
     }
     try {
       inchworm::write_trace_file(p, m, opt, out);

@@ -2,8 +2,12 @@
 // Exit codes: 0 success; 1 the computation failed; 2 bad usage or bad input.
 // Errors go to stderr as `slipwalk: error: <where>: <what>`.
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "sweeps/cli/commands.hpp"
 
@@ -17,9 +21,23 @@ int main(int argc, char** argv) {
   slipwalk::cli::add_model_command(app);
   slipwalk::cli::add_run_command(app);
   slipwalk::cli::add_kinds_command(app);
+  // An interrupted command leaves no temporary behind; stale ones of killed runs are noted.
+  slipwalk::core::install_signal_cleanup();
+  slipwalk::core::set_note_stream(&std::cerr);
+  // What went to stdout must have arrived: a full device or a closed pipe is a failed command.
+  const auto stdout_failed = [] {
+    std::cout.flush();
+    errno = 0;
+    if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout) {
+      std::cerr << "slipwalk: error: <stdout>: write failed"
+                << (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()) << "\n";
+      return true;
+    }
+    return false;
+  };
   try {
     app.parse(argc, argv);
-    return 0;
+    return stdout_failed() ? 1 : 0;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

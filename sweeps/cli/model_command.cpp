@@ -1,6 +1,7 @@
 // slipwalk model: one frame of the multi-legged model (thesis ch. 3) in the frame format of
 // DESIGN.md, or a CSV batch of frames (one per row) for trajectories; the work is
 // connection/frame_model.hpp's, this file parses the options and writes the text.
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -53,7 +54,7 @@ connection::FrictionLaw friction_law(const std::string& name) {
 
 /// Writes `text` to --out (atomically) or stdout.
 void emit(const std::string& out, const std::string& text) {
-  if (out.empty() || out == "-") {
+  if (out == "-") {
     std::cout << text;
     return;
   }
@@ -64,10 +65,14 @@ struct ModelCommand {
   std::string friction = "viscous";
   std::string in = "-";
   std::string robot;  // a robot file switches to CSV batch mode
-  std::string out;
+  std::string out = "-";
 
   void run() const {
     const connection::FrictionLaw law = friction_law(friction);
+    if (out != "-") {
+      const std::array<std::filesystem::path, 2> inputs{in, robot};
+      core::check_output_path(out, "--out", inputs);
+    }
     const std::string source = in == "-" ? "<stdin>" : in;
     if (robot.empty()) {
       const std::string text = in == "-" ? core::read_json_text(std::cin, source)
@@ -97,7 +102,8 @@ void add_model_command(CLI::App& app) {
                   "--robot; - for stdin (default)");
   sub->add_option("--robot", cmd->robot,
                   "robot JSON {K, mu, w, Mg | legs}: read --in as a CSV batch, one frame a row");
-  sub->add_option("--out", cmd->out, "write here instead of stdout (written whole or not at all)");
+  sub->add_option("--out", cmd->out,
+                  "write here instead of stdout (written whole or not at all; - for stdout)");
   sub->callback([cmd] { cmd->run(); });
 }
 

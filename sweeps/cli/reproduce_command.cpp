@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "sweeps/cli/commands.hpp"
 #include "sweeps/engine/reproduce.hpp"
@@ -29,6 +30,8 @@ struct ReproduceCommand {
   std::vector<std::string> names;
 
   void run() const {
+    core::check_output_dir(data, "--data");
+    core::check_output_dir(report, "--report");
     sweeps::ReproduceOptions options;
     options.studies_dir = studies;
     options.names = names;

@@ -5,11 +5,14 @@
 //
 // The columns and the sidecar are scene/run_writer.hpp's, shared with the [[scene]] entries of
 // the studies (`slipwalk reproduce`).
+#include <array>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "scene/run_writer.hpp"
 #include "scene/scene.hpp"
 #include "sweeps/cli/commands.hpp"
@@ -25,7 +28,13 @@ struct RunCommand {
 
   void run() const {
     // Everything is read and checked before anything is written (write_run also refuses an
-    // --out whose sidecar would overwrite it before it opens a file).
+    // --out whose sidecar would overwrite it before it opens a file); neither output may be the
+    // scene file itself.
+    const std::array<std::filesystem::path, 1> inputs{scene_file};
+    core::check_output_path(out, "--out", inputs);
+    std::filesystem::path sidecar = out;
+    sidecar.replace_extension(".json");
+    core::check_output_path(sidecar, "--out (its sidecar " + sidecar.string() + ")", inputs);
     const scene::Scene scene = scene::read_scene(scene_file);
     const scene::Simulator sim = scene::compose(scene);
     const nlohmann::json extra = {{"command", "run"}};

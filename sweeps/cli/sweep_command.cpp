@@ -1,8 +1,11 @@
 // slipwalk sweep SPEC.toml [--jobs N] [--resume] [--quick] [--data DIR] (sweeps/README.md).
+#include <array>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "sweeps/cli/commands.hpp"
 #include "sweeps/engine/runner.hpp"
@@ -31,9 +34,15 @@ struct SweepCommand {
     if (max_points < -1) {
       throw core::InputError("--max-points", "must be non-negative");
     }
-    // Everything is checked before anything is written.
+    // Everything is checked before anything is written, the destination included.
+    core::check_output_dir(data, "--data");
     const sweeps::PreparedSweep sweep =
         sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
+    const std::array<std::filesystem::path, 1> inputs{spec};
+    for (const std::filesystem::path& out :
+         {sweeps::csv_path(sweep.spec, data), sweeps::partial_path(sweep.spec, data)}) {
+      core::check_output_path(out, "--data (output " + out.string() + ")", inputs, true);
+    }
     sweeps::RunOptions options;
     options.data_dir = data;
     options.jobs = static_cast<unsigned>(jobs);

@@ -245,6 +245,20 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
     }
   }
   summary.resumed = static_cast<long long>(done.size());
+  // A run that fails before it finishes a point leaves nothing behind: no empty checkpoint, and
+  // not the study folder it created.
+  const std::filesystem::path folder = summary.partial.parent_path();
+  std::error_code exists_ec;
+  const bool folder_existed = folder.empty() || std::filesystem::exists(folder, exists_ec);
+  const auto discard_if_nothing_done = [&] {
+    if (done.empty()) {
+      std::error_code ec;
+      std::filesystem::remove(summary.partial, ec);
+      if (!folder_existed) {
+        std::filesystem::remove(folder, ec);  // only if empty
+      }
+    }
+  };
   write_partial_start(summary.partial, header, print, done);
 
   std::vector<std::size_t> pending;
@@ -325,11 +339,15 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
     }
     summary.computed = computed;
     if (!partial) {
+      discard_if_nothing_done();
       throw core::ComputationError(summary.partial.string() + ": write failed");
     }
     if (!error.empty()) {
-      throw core::ComputationError(label + error + " (finished points are kept in " +
-                                   summary.partial.string() + ")");
+      discard_if_nothing_done();
+      throw core::ComputationError(
+          label + error +
+          (done.empty() ? std::string()
+                        : " (finished points are kept in " + summary.partial.string() + ")"));
     }
   }
 
