@@ -404,7 +404,7 @@ def main():
     if not path.is_file():
         c.atomic_write_text(args.out / f"{NAME}_body.html",
                             "<section id='coa-legged'><h2>The multi-legged model: friction "
-                            f"solvers</h2><p class='bad'>Not built: <code>{html.escape(str(path))}"
+                            f"solvers</h2><p class='bad'>Not built: <code>{html.escape(c.shown_path(path))}"
                             "</code> is missing (run <code>slipwalk reproduce cost_of_accuracy"
                             "</code>).</p></section>\n")
         print(f"{NAME}.py: warning: {path}: missing, section not built")

@@ -60,9 +60,7 @@ def style(m: str) -> dict:
 
 
 def read(data: Path, name: str, required: list[str]) -> c.Table:
-    path = data / STUDY / name
-    if not path.is_file():
-        c.fail(f"{path}: input file missing (run `slipwalk reproduce {STUDY}`)")
+    path = c.study_file(data, name, STUDY)
     t = c.Table(path, required)
     if t.n == 0:
         c.fail(f"{path}: no data rows")

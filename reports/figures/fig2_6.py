@@ -29,9 +29,7 @@ COLUMNS = ["t", "x", "y", "z", "com", "phase", "slide_y", "side", "event"]
 
 
 def read_trace(data, F: int, cond: str) -> c.Table:
-    path = data / STUDY / f"fig2_6_F{F}_{cond}.csv"
-    if not path.is_file():
-        c.fail(f"{path}: input file missing (run `slipwalk reproduce ch2_dm_swap` to produce it)")
+    path = c.study_file(data, f"fig2_6_F{F}_{cond}.csv", STUDY)
     t = c.Table(path, COLUMNS)
     if t.n < 10:
         c.fail(f"{path}: only {t.n} rows")

@@ -56,9 +56,7 @@ def label(name: str) -> str:
 def main():
     args = c.parse_args(__doc__.splitlines()[0])
     plt = c.setup_matplotlib()
-    path = args.data / STUDY / "fig2_7.csv"
-    if not path.is_file():
-        c.fail(f"{path}: input file missing (run `slipwalk reproduce ch2_dm_swap` to produce it)")
+    path = c.study_file(args.data, "fig2_7.csv", STUDY)
     t = c.Table(path, c.SWEEP_COLUMNS + ["regime", "model", "alpha", "swap_stopped", "message"])
     if t.n == 0:
         c.fail(f"{path}: no data rows")

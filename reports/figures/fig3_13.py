@@ -36,9 +36,7 @@ OURS, PEER = c.VISCOUS, c.MUJOCO
 
 
 def table(data: Path, name: str, required: list[str]) -> tuple[c.Table, dict]:
-    path = data / STUDY / f"{name}.csv"
-    if not path.is_file():
-        c.fail(f"{path}: input file missing (run `slipwalk reproduce {STUDY}` to produce it)")
+    path = c.study_file(data, f"{name}.csv", STUDY)
     t = c.Table(path, required)
     if t.n == 0:
         c.fail(f"{path}: no data rows")

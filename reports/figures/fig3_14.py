@@ -62,9 +62,7 @@ def gap(a: dict, b: dict) -> dict:
 def main():
     args = c.parse_args(__doc__.splitlines()[0])
     plt = c.setup_matplotlib()
-    path = args.data / STUDY / f"{NAME}.csv"
-    if not path.is_file():
-        c.fail(f"{path}: input file missing (run `slipwalk reproduce {STUDY}` to produce it)")
+    path = c.study_file(args.data, f"{NAME}.csv", STUDY)
     t = c.Table(path, ["gait", "source", "label", "t", "x", "y", "theta", "mu", "timestep",
                        "solref_timeconst", "solref_dampratio", "kp_xy", "kp_z", "K", "lead",
                        "rmse_x", "rmse_y", "rmse_z", "rmse_z_swing", "rmse_xy_foot_max",

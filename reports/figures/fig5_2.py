@@ -46,9 +46,7 @@ JUMP_LIMIT = 0.01      # m, of the body's height above the plane, per frame
 
 
 def load_run(data, name):
-    path = data / STUDY / f"{name}.csv"
-    if not path.is_file():
-        c.fail(f"{path}: input file missing (run `slipwalk reproduce {STUDY}` to produce it)")
+    path = c.study_file(data, f"{name}.csv", STUDY)
     cols = ["t", "x", "y", "theta", "z", "bx", "by", "bz"]
     for leg in LEGS:
         cols += [f"px_{leg}", f"pz_{leg}", f"contact_{leg}"]
@@ -105,13 +103,9 @@ def main():
     plt = c.setup_matplotlib()
     coul, coul_meta = load_run(args.data, "slope17_coulomb")
     visc, visc_meta = load_run(args.data, "slope17_viscous")
-    for name in ("progress.csv", "stall.csv"):
-        if not (args.data / STUDY / name).is_file():
-            c.fail(f"{args.data / STUDY / name}: input file missing (run `slipwalk reproduce "
-                   f"{STUDY}` to produce it)")
-    prog = c.Table(args.data / STUDY / "progress.csv",
+    prog = c.Table(c.study_file(args.data, "progress.csv", STUDY),
                    ["law", "angle_deg", "progress_per_cycle", "sliding_frames"])
-    stall = c.Table(args.data / STUDY / "stall.csv",
+    stall = c.Table(c.study_file(args.data, "stall.csv", STUDY),
                     ["law", "angle_deg", "progress_per_cycle", "sliding_frames", "stall_deg"])
     period = 1.0 / float(coul_meta.get("scene", {}).get("gait", {}).get("frequency", 0.1))
     mu = 1.0  # BigANT's μ (robots/bigant.hpp), the same in every run here

@@ -51,9 +51,7 @@ class Run:
     """One scene run on stairs: the table, its stairs and gait, and what the criteria measure."""
 
     def __init__(self, data: Path, name: str):
-        path = data / STUDY / f"{name}.csv"
-        if not path.is_file():
-            c.fail(f"{path}: input file missing (run `slipwalk reproduce {STUDY}` to produce it)")
+        path = c.study_file(data, f"{name}.csv", STUDY)
         cols = ["t", "x", "y", "theta", "bx", "by", "bz"]
         for leg in ALL_LEGS:
             cols += [f"px_{leg}", f"py_{leg}", f"pz_{leg}", f"contact_{leg}", f"Fz_{leg}",

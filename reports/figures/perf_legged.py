@@ -292,7 +292,7 @@ def main():
     if not path.is_file():
         c.atomic_write_text(args.out / f"{NAME}_body.html",
                             "<p class='bad' id='perf-legged'>Multi-legged cost per frame not "
-                            f"built: <code>{html.escape(str(path))}</code> is missing (run "
+                            f"built: <code>{html.escape(c.shown_path(path))}</code> is missing (run "
                             "<code>slipwalk reproduce ch3_legged</code>).</p>\n")
         print(f"{NAME}.py: warning: {path}: missing, block not built")
         return

@@ -46,9 +46,7 @@ def edges(centers: np.ndarray) -> np.ndarray:
 def main():
     args = c.parse_args(__doc__.splitlines()[0])
     plt = c.setup_matplotlib()
-    path = args.data / STUDY / "regime_map.csv"
-    if not path.is_file():
-        c.fail(f"{path}: input file missing (run `slipwalk reproduce ch2_dm_swap` to produce it)")
+    path = c.study_file(args.data, "regime_map.csv", STUDY)
     t = c.Table(path, c.SWEEP_COLUMNS + ["mu_s", "regime", "alpha", "swap_stopped", "model"])
     if t.n == 0:
         c.fail(f"{path}: no data rows")

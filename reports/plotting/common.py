@@ -48,11 +48,21 @@ def parse_args(description: str) -> argparse.Namespace:
     return ap.parse_args()
 
 
-def study_file(data: Path, name: str) -> Path:
-    path = data / STUDY / name
+def study_file(data: Path, name: str, study: str = STUDY) -> Path:
+    """DATA/<study>/<name>, or exit 2 naming the file and the study that writes it."""
+    path = data / study / name
     if not path.is_file():
-        fail(f"{path}: input file missing (run `slipwalk reproduce` to produce it)")
+        fail(f"{path}: input file missing (run `slipwalk reproduce {study}` to produce it)")
     return path
+
+
+def shown_path(path: Path) -> str:
+    """A path as the pages name it: relative to the repository, else by its name alone (a page
+    never shows a machine's absolute path)."""
+    try:
+        return str(Path(path).resolve().relative_to(REPO)) or "."
+    except ValueError:
+        return Path(path).resolve().name
 
 
 # ---------------------------------------------------------------------------------------------

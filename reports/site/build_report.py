@@ -69,14 +69,6 @@ def run_script(script: Path, data: Path, out: Path, claims: Path) -> tuple[str, 
     return script.stem, proc.returncode, (proc.stdout + proc.stderr).strip(), time.monotonic() - start
 
 
-def shown_path(path: Path) -> str:
-    """A folder as the pages name it: relative to the repository, else by its name alone."""
-    try:
-        return str(path.resolve().relative_to(c.REPO)) or "."
-    except ValueError:
-        return path.resolve().name
-
-
 def referenced_keys(registry: reg.Registry, claims: list[dict], ledger_path: Path,
                     prose: dict[str, tuple[str, str]]) -> dict[str, list[str]]:
     """Every value key a claim, a figure's texts or a page's prose quotes -> where."""
@@ -203,7 +195,7 @@ def main() -> int:
 
         build = pages.Build(registry=registry, claims=claims, results=results, values=values,
                             staging=staging, ran=ran, data=args.data.resolve(),
-                            data_name=shown_path(args.data), repo=c.REPO, script_times=times,
+                            data_name=c.shown_path(args.data), repo=c.REPO, script_times=times,
                             quick=args.quick)
         built = staging / ".pages"
         built.mkdir()
