@@ -29,7 +29,7 @@ struct Range {
     return above && below;
   }
 
-  /// "(0, 1e+06] kg"
+  /// "(0, 1000000] kg"
   [[nodiscard]] std::string describe() const {
     std::string s(lo_open ? "(" : "[");
     s.append(format_double(lo)).append(", ").append(format_double(hi));
