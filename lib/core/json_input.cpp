@@ -1,13 +1,12 @@
 #include "core/json_input.hpp"
 
-#include <array>
-#include <fstream>
 #include <istream>
 #include <map>
 #include <optional>
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 namespace slipwalk::core {
 
@@ -250,32 +249,11 @@ json parse_json(std::string_view text, const std::string& source) {
 }
 
 std::string read_json_text(std::istream& in, const std::string& source) {
-  std::string text;
-  std::array<char, 65536> chunk{};
-  while (in) {
-    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kJsonMaxBytes) {
-      throw InputError(
-          source, "JSON text longer than the limit of " + std::to_string(kJsonMaxBytes) + " bytes");
-    }
-  }
-  if (in.bad()) {
-    throw InputError(source, "cannot read");
-  }
-  return text;
+  return read_input_stream(in, source, "the JSON text", kJsonMaxBytes);
 }
 
 std::string read_json_text(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path.string(), "is a folder, not a JSON file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError(path.string(), "cannot read");
-  }
-  return read_json_text(in, path.string());
+  return read_input_file(path, "a JSON file", kJsonMaxBytes);
 }
 
 }  // namespace slipwalk::core

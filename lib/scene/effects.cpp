@@ -11,6 +11,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 namespace slipwalk::scene {
 
@@ -132,9 +133,12 @@ ResidualEffect read_residual(const TableReader& residual, const std::string& sce
   if (path.is_relative()) {
     path = std::filesystem::path(scene_path).parent_path() / path;
   }
-  std::ifstream in(path, std::ios::binary);
-  residual.check(static_cast<bool>(in), node, "file", "cannot read '" + path.string() + "'");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::string text;
+  try {
+    text = core::read_input_file(path, "a residual-term CSV file");
+  } catch (const core::InputError& e) {
+    residual.fail(node, "file", std::string("cannot read: ") + e.what());
+  }
   ResidualEffect effect;
   effect.file = path.string();
   effect.B = parse_residual(text, effect.file, legs);

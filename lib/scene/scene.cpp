@@ -10,6 +10,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "scene/effects.hpp"
 #include "scene/friction_laws.hpp"
 #include "scene/toml_reader.hpp"
@@ -265,12 +266,7 @@ Scene parse_scene(std::string_view text, const std::string& path) {
 }
 
 Scene read_scene(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError(path.string(), "cannot read the scene file");
-  }
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  return parse_scene(text, path.string());
+  return parse_scene(core::read_input_file(path, "a scene file"), path.string());
 }
 
 nlohmann::json to_json(const Scene& scene) {

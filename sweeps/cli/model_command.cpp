@@ -13,6 +13,7 @@
 #include "contact/frame_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "core/json_input.hpp"
 #include "scene/friction_laws.hpp"
 #include "sweeps/cli/commands.hpp"
@@ -25,13 +26,9 @@ using core::InputError;
 
 std::string read_all(const std::string& path) {
   if (path == "-") {
-    return {std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()};
+    return core::read_input_stream(std::cin, "<stdin>", "the frame JSON");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError(path, "cannot read");
-  }
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return core::read_input_file(path, "a frame JSON file");
 }
 
 /// The isotropic laws of the scene format's table (a frame's own `w` makes either anisotropic).

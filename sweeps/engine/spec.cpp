@@ -9,6 +9,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "sweeps/engine/toml_util.hpp"
 
 namespace slipwalk::sweeps {
@@ -450,13 +451,7 @@ Spec parse_spec(std::string_view text, const std::string& path, bool quick) {
 }
 
 Spec load_spec(const std::filesystem::path& path, bool quick) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) {
-    throw InputError(path.string(), "cannot read the sweep spec");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_spec(text.str(), path.string(), quick);
+  return parse_spec(core::read_input_file(path, "a sweep spec"), path.string(), quick);
 }
 
 std::size_t point_count(const Spec& spec) {

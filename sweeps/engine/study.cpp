@@ -11,6 +11,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "scene/friction_laws.hpp"
 #include "sweeps/engine/toml_util.hpp"
 
@@ -276,15 +277,10 @@ Study load_study(const std::filesystem::path& dir) {
   }
   const std::filesystem::path file = dir / "study.toml";
   const std::string path = file.string();
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    throw InputError(path, "cannot read the study file");
-  }
-  std::ostringstream content;
-  content << in.rdbuf();
+  const std::string content = core::read_input_file(file, "a study file");
   toml::table doc;
   try {
-    doc = toml::parse(content.str(), path);
+    doc = toml::parse(content, path);
   } catch (const toml::parse_error& e) {
     throw InputError(origin_of(e.source(), path), std::string(e.description()));
   }
