@@ -81,6 +81,9 @@ constexpr double kMinStep = 1.0 / 4096.0;
 // stricter trigger, one more Newton step on those frames only.
 constexpr double kDeepCut = 1.0 / 16.0;
 constexpr double kCutPrecision = 1e-6;
+// Balance of the reported forces, relative to their scale, that a certificate needs where the
+// dual's correction cannot enforce it (finish()); rounding leaves ~1e-15 with 50 feet.
+constexpr double kBalanced = 1e-12;
 }  // namespace
 
 /// Minimizes m(p) = gᵀp + ½ pᵀHp + ‖r + Bp‖ over p ∈ R³: the sliding feet by their quadratic
@@ -184,6 +187,7 @@ void Solver::run() {
   auto& s = frame_.friction;
   s.iterations = 0;
   s.message.clear();
+  s.route = contact::FrictionSummary::Route::kDirect;
 
   // ---- per-foot constants, Σ B_kᵀB_k (dual projection, degeneracy), the viscous start -----
   setup();
@@ -214,15 +218,18 @@ void Solver::run() {
   }
 
   // ---- the fast path: Newton with the foot nearest to rest modelled exactly ------------------
+  s.route = contact::FrictionSummary::Route::kPath;
   if (options_.fast_path && S.r2_min > 1e-28 * D0_ * D0_) {
     const Eigen::Vector3d start = y;
     Dual dual;
+    s.route = contact::FrictionSummary::Route::kFastPath;
     if (kink_newton(y, S, Dref, dual)) {
       finish(y, dual);
       return;
     }
     // Several feet near rest at once (e.g. a mirror-symmetric pair): the path takes over from
     // the viscous start, every foot sliding.
+    s.route = contact::FrictionSummary::Route::kFallback;
     y = start;
     classify(0.0);
   }
@@ -633,20 +640,38 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
   }
   const double denom = std::max(primal, D0_);
   const double cert = denom > 0.0 ? std::max(primal - value, 0.0) / denom : 0.0;
+  // M₂ weighs the feet by c_k², so it is rank-deficient to rounding not only when the contacts
+  // are at one point but also when the weights span more than ~6 decades and only the lightest
+  // feet feel a direction. Those feet do feel it: y must not be projected along it (D would
+  // change after the certificate), and the dual's correction does not balance along it, so the
+  // certificate holds only if the forces balance anyway (checked on the forces themselves).
+  const bool light = dual_.rank() < 3 && !one_point();
+  s.residual = sum.residual(scale_, cs_.L);
+  const bool unbalanced = light && !(s.residual <= kBalanced);
   s.certificate = cert;
-  s.converged = cert <= options_.tol;
+  s.converged = cert <= options_.tol && !unbalanced;
   s.static_feet = n_static;
-  s.unique = cs_.active > 0 && dual_.rank() == 3 && !flat_direction(Q, n_static);
+  s.unique = cs_.active > 0 && (dual_.rank() == 3 || light) && !flat_direction(Q, n_static);
   // Least norm along directions no foot feels (contacts at one point), then the body velocity.
-  y = dual_.project_to_range(y);
+  if (!light) {
+    y = dual_.project_to_range(y);
+  }
   detail::set_velocity(frame_, y, cs_.L);
   s.dissipation = primal;
-  s.residual = sum.residual(scale_, cs_.L);
   if (cs_.active == 0) {
     s.message = "no foot with friction in contact: body velocity undetermined, set to 0";
+  } else if (unbalanced) {
+    s.message =
+        "friction weights mu_k F_z,k spread over too many decades: the certifying forces "
+        "do not balance along a direction only the lightest feet feel (residual " +
+        core::format_double(s.residual) + ")";
   } else if (!s.converged) {
     s.message = "iteration limit: relative duality gap " + core::format_double(cert) +
                 " above the tolerance " + core::format_double(options_.tol);
+  } else if (light) {
+    if (!s.unique) {
+      s.message = "flat minimum of the dissipation: a continuum of body velocities balance";
+    }
   } else if (dual_.rank() < 3) {
     s.message = "all contacts at one point: rotation about it undetermined (least-norm solution)";
   } else if (!s.unique) {
@@ -656,6 +681,21 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
         "static feet at distinct points: their internal force is undetermined (least-norm "
         "forces reported)";
   }
+}
+
+bool Solver::one_point() const {
+  int first = -1;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    if (first < 0) {
+      first = k;
+    } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).norm() > 1e-6 * cs_.L) {
+      return false;
+    }
+  }
+  return true;
 }
 
 bool Solver::flat_direction(Eigen::Matrix3d Q, int n_static) const {

@@ -260,6 +260,8 @@ class Solver {
   /// Whether D has a flat direction at the optimum (coulomb.cpp, non-uniqueness), given the sliding
   /// feet's part of Q and the certified dual λ in work_2n.
   bool flat_direction(Eigen::Matrix3d Q, int n_static) const;
+  /// Whether every foot with friction lies within 1e-6 L of the first (contacts at one point).
+  [[nodiscard]] bool one_point() const;
 
   // ---- the smoothing path and its polish (coulomb_path.cpp) ------------------------------------
   /// The fallback: the smoothing path from y with polish attempts at the end of each stage; S
