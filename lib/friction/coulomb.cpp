@@ -638,15 +638,19 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
     y += dual.p;
     primal = stepped;
   }
-  const double denom = std::max(primal, D0_);
-  const double cert = denom > 0.0 ? std::max(primal - value, 0.0) / denom : 0.0;
   // M₂ weighs the feet by c_k², so it is rank-deficient to rounding not only when the contacts
   // are at one point but also when the weights span more than ~6 decades and only the lightest
   // feet feel a direction. Those feet do feel it: y must not be projected along it (D would
-  // change after the certificate), and the dual's correction does not balance along it, so the
-  // certificate holds only if the forces balance anyway (checked on the forces themselves).
+  // change after the certificate), and the dual's correction does not balance along it; the
+  // forces are then balanced again in the viscous metric M₁ (∝ c_k, rebalance()), and the
+  // certificate holds only if they balance (checked on the forces themselves).
   const bool light = dual_.rank() < 3 && !one_point();
+  if (light && !(sum.residual(scale_, cs_.L) <= kBalanced)) {
+    value = rebalance(sum);
+  }
   s.residual = sum.residual(scale_, cs_.L);
+  const double denom = std::max(primal, D0_);
+  const double cert = denom > 0.0 ? std::max(primal - value, 0.0) / denom : 0.0;
   const bool unbalanced = light && !(s.residual <= kBalanced);
   s.certificate = cert;
   s.converged = cert <= options_.tol && !unbalanced;
@@ -683,7 +687,43 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
   }
 }
 
-bool Solver::one_point() const {
+[[gnu::cold, gnu::noinline]] double Solver::rebalance(detail::BalanceSum& sum) {
+  // λ_k −= B_k μ / c_k with M₁ μ = h = Σ B_kᵀλ_k: the correction of each foot is in units of its
+  // own disk, so a light foot takes its share of the direction only it feels.
+  Eigen::Vector3d h = Eigen::Vector3d::Zero();
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) != kInactive) {
+      h += B(k).transpose() * Eigen::Vector2d(frame_.work_2n.col(k));
+    }
+  }
+  const Eigen::Vector3d mu = viscous_.solve(h);
+  double lmax2 = 0.0;
+  double value = 0.0;
+  sum = detail::BalanceSum{};
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    const auto Bk = B(k);
+    const Eigen::Vector2d lam = frame_.work_2n.col(k) - Bk * mu / weight(k);
+    lmax2 = std::max(lmax2, lam.squaredNorm());
+    value += lam.dot(d(k));
+    frame_.work_2n.col(k) = lam;
+    frame_.Fxy.col(k) = -(Bk.leftCols<2>() * lam);  // F_k = −c_k W_k λ_k
+    sum.add(frame_, k, frame_.Fxy.col(k));
+  }
+  if (lmax2 > 1.0) {  // a common scale keeps the balance
+    const double shrink = 1.0 / std::sqrt(lmax2);
+    frame_.Fxy *= shrink;
+    frame_.work_2n *= shrink;
+    sum.force *= shrink;
+    sum.moment *= shrink;
+    value *= shrink;
+  }
+  return value;
+}
+
+[[gnu::cold, gnu::noinline]] bool Solver::one_point() const {
   int first = -1;
   for (int k = 0; k < frame_.legs(); ++k) {
     if (state(k) == kInactive) {
