@@ -67,7 +67,17 @@ struct SupportSummary {
 
 /// What a friction solve did (§3.4).
 struct FrictionSummary {
+  /// Coulomb (friction::solve_coulomb, solve_coulomb_loaded): which of the solver's routes gave
+  /// the answer (friction/coulomb.cpp); the other laws leave it as it is.
+  enum class Route {
+    kDirect,    ///< no Newton step: no friction, nothing moves, or the viscous start certified
+    kFastPath,  ///< Newton with the kink model (the fast path)
+    kPath,      ///< the smoothing path, the fast path not tried (a foot at rest at the start,
+                ///< fast_path = false, or a load)
+    kFallback,  ///< the smoothing path after the fast path stalled (a restart from the start)
+  };
   bool converged = true;
+  Route route = Route::kDirect;
   int iterations = 0;     ///< 0 for the direct (viscous-Coulomb) solve
   double residual = 0.0;  ///< planar balance residual max(‖ΣF‖/F, |ΣM_z|/(F L)), F = the size
                           ///< of the cancelling terms (Coulomb: Σ μF_z‖W‖; viscous: Σ μF_z‖G‖

@@ -81,6 +81,9 @@ constexpr double kMinStep = 1.0 / 4096.0;
 // stricter trigger, one more Newton step on those frames only.
 constexpr double kDeepCut = 1.0 / 16.0;
 constexpr double kCutPrecision = 1e-6;
+// Balance of the reported forces, relative to their scale, that a certificate needs where the
+// dual's correction cannot enforce it (finish()); rounding leaves ~1e-15 with 50 feet.
+constexpr double kBalanced = 1e-12;
 }  // namespace
 
 /// Minimizes m(p) = gᵀp + ½ pᵀHp + ‖r + Bp‖ over p ∈ R³: the sliding feet by their quadratic
@@ -184,6 +187,7 @@ void Solver::run() {
   auto& s = frame_.friction;
   s.iterations = 0;
   s.message.clear();
+  s.route = contact::FrictionSummary::Route::kDirect;
 
   // ---- per-foot constants, Σ B_kᵀB_k (dual projection, degeneracy), the viscous start -----
   setup();
@@ -214,15 +218,18 @@ void Solver::run() {
   }
 
   // ---- the fast path: Newton with the foot nearest to rest modelled exactly ------------------
+  s.route = contact::FrictionSummary::Route::kPath;
   if (options_.fast_path && S.r2_min > 1e-28 * D0_ * D0_) {
     const Eigen::Vector3d start = y;
     Dual dual;
+    s.route = contact::FrictionSummary::Route::kFastPath;
     if (kink_newton(y, S, Dref, dual)) {
       finish(y, dual);
       return;
     }
     // Several feet near rest at once (e.g. a mirror-symmetric pair): the path takes over from
     // the viscous start, every foot sliding.
+    s.route = contact::FrictionSummary::Route::kFallback;
     y = start;
     classify(0.0);
   }
@@ -631,22 +638,44 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
     y += dual.p;
     primal = stepped;
   }
+  // M₂ weighs the feet by c_k², so it is rank-deficient to rounding not only when the contacts
+  // are at one point but also when the weights span more than ~6 decades and only the lightest
+  // feet feel a direction. Those feet do feel it: y must not be projected along it (D would
+  // change after the certificate), and the dual's correction does not balance along it; the
+  // forces are then balanced again in the viscous metric M₁ (∝ c_k, rebalance()), and the
+  // certificate holds only if they balance (checked on the forces themselves).
+  const bool light = dual_.rank() < 3 && !one_point();
+  if (light && !(sum.residual(scale_, cs_.L) <= kBalanced)) {
+    value = rebalance(sum);
+  }
+  s.residual = sum.residual(scale_, cs_.L);
   const double denom = std::max(primal, D0_);
   const double cert = denom > 0.0 ? std::max(primal - value, 0.0) / denom : 0.0;
+  const bool unbalanced = light && !(s.residual <= kBalanced);
   s.certificate = cert;
-  s.converged = cert <= options_.tol;
+  s.converged = cert <= options_.tol && !unbalanced;
   s.static_feet = n_static;
-  s.unique = cs_.active > 0 && dual_.rank() == 3 && !flat_direction(Q, n_static);
+  s.unique = cs_.active > 0 && (dual_.rank() == 3 || light) && !flat_direction(Q, n_static);
   // Least norm along directions no foot feels (contacts at one point), then the body velocity.
-  y = dual_.project_to_range(y);
+  if (!light) {
+    y = dual_.project_to_range(y);
+  }
   detail::set_velocity(frame_, y, cs_.L);
   s.dissipation = primal;
-  s.residual = sum.residual(scale_, cs_.L);
   if (cs_.active == 0) {
     s.message = "no foot with friction in contact: body velocity undetermined, set to 0";
+  } else if (unbalanced) {
+    s.message =
+        "friction weights mu_k F_z,k spread over too many decades: the certifying forces "
+        "do not balance along a direction only the lightest feet feel (residual " +
+        core::format_double(s.residual) + ")";
   } else if (!s.converged) {
     s.message = "iteration limit: relative duality gap " + core::format_double(cert) +
                 " above the tolerance " + core::format_double(options_.tol);
+  } else if (light) {
+    if (!s.unique) {
+      s.message = "flat minimum of the dissipation: a continuum of body velocities balance";
+    }
   } else if (dual_.rank() < 3) {
     s.message = "all contacts at one point: rotation about it undetermined (least-norm solution)";
   } else if (!s.unique) {
@@ -656,6 +685,57 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
         "static feet at distinct points: their internal force is undetermined (least-norm "
         "forces reported)";
   }
+}
+
+[[gnu::cold, gnu::noinline]] double Solver::rebalance(detail::BalanceSum& sum) {
+  // λ_k −= B_k μ / c_k with M₁ μ = h = Σ B_kᵀλ_k: the correction of each foot is in units of its
+  // own disk, so a light foot takes its share of the direction only it feels.
+  Eigen::Vector3d h = Eigen::Vector3d::Zero();
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) != kInactive) {
+      h += B(k).transpose() * Eigen::Vector2d(frame_.work_2n.col(k));
+    }
+  }
+  const Eigen::Vector3d mu = viscous_.solve(h);
+  double lmax2 = 0.0;
+  double value = 0.0;
+  sum = detail::BalanceSum{};
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    const auto Bk = B(k);
+    const Eigen::Vector2d lam = frame_.work_2n.col(k) - Bk * mu / weight(k);
+    lmax2 = std::max(lmax2, lam.squaredNorm());
+    value += lam.dot(d(k));
+    frame_.work_2n.col(k) = lam;
+    frame_.Fxy.col(k) = -(Bk.leftCols<2>() * lam);  // F_k = −c_k W_k λ_k
+    sum.add(frame_, k, frame_.Fxy.col(k));
+  }
+  if (lmax2 > 1.0) {  // a common scale keeps the balance
+    const double shrink = 1.0 / std::sqrt(lmax2);
+    frame_.Fxy *= shrink;
+    frame_.work_2n *= shrink;
+    sum.force *= shrink;
+    sum.moment *= shrink;
+    value *= shrink;
+  }
+  return value;
+}
+
+[[gnu::cold, gnu::noinline]] bool Solver::one_point() const {
+  int first = -1;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    if (first < 0) {
+      first = k;
+    } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).norm() > 1e-6 * cs_.L) {
+      return false;
+    }
+  }
+  return true;
 }
 
 bool Solver::flat_direction(Eigen::Matrix3d Q, int n_static) const {

@@ -468,6 +468,7 @@ void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
     solve_coulomb(robot, frame, options);
     return;
   }
+  frame.friction.route = contact::FrictionSummary::Route::kPath;  // the smoothing path only
   // ---- the viscous-Coulomb system gives L, c_k (in work_n) and the starting point -----------
   Eigen::Matrix3d M;
   Eigen::Vector3d b;
@@ -517,6 +518,7 @@ void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
     }
     return;
   }
+  s.route = contact::FrictionSummary::Route::kPath;
   Context cx{robot, frame, phi, f, cs.L, V, c_scale, scale, options.tol};
 
   // ---- the smoothing path: damped Newton per stage, δ ← δ/10, a polish after each stage ------

@@ -260,6 +260,12 @@ class Solver {
   /// Whether D has a flat direction at the optimum (coulomb.cpp, non-uniqueness), given the sliding
   /// feet's part of Q and the certified dual λ in work_2n.
   bool flat_direction(Eigen::Matrix3d Q, int n_static) const;
+  /// Balances the forces of finish() again where M₂'s correction cannot (weights spanning many
+  /// decades): λ_k −= B_k μ/c_k with M₁ μ = Σ B_kᵀλ_k, scaled into the disks; rewrites Fxy,
+  /// work_2n and `sum` and returns the dual value Σ λ_kᵀd_k.
+  double rebalance(detail::BalanceSum& sum);
+  /// Whether every foot with friction lies within 1e-6 L of the first (contacts at one point).
+  [[nodiscard]] bool one_point() const;
 
   // ---- the smoothing path and its polish (coulomb_path.cpp) ------------------------------------
   /// The fallback: the smoothing path from y with polish attempts at the end of each stage; S

@@ -31,6 +31,8 @@ namespace slipwalk::sweeps::points {
 [[nodiscard]] std::vector<PointKind> scene_cost_kinds();
 /// BigANT up a slope: progress per cycle and the stall slope, §5.2.1 (slope.cpp).
 [[nodiscard]] std::vector<PointKind> slope_kinds();
+/// The long run of the Coulomb solver on random stress frames, §3.4 (coulomb_long_run.cpp).
+[[nodiscard]] std::vector<PointKind> coulomb_long_run_kinds();
 
 /// Every point kind of every family, in the order of families.cpp.
 [[nodiscard]] std::span<const PointKind> all_kinds();
