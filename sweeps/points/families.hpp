@@ -32,6 +32,9 @@ namespace slipwalk::sweeps::points {
 /// BigANT up a slope: progress per cycle and the stall slope, §5.2.1 (slope.cpp).
 [[nodiscard]] std::vector<PointKind> slope_kinds();
 
+/// The hostile-input campaign against the binary itself (hostile_inputs_kind.cpp).
+[[nodiscard]] std::vector<PointKind> hostile_input_kinds();
+
 /// Every point kind of every family, in the order of families.cpp.
 [[nodiscard]] std::span<const PointKind> all_kinds();
 
