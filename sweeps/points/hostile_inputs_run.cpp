@@ -86,6 +86,7 @@ Outcome invoke(const fs::path& binary, const Invocation& inv, const fs::path& di
   std::vector<std::string> argv_text = {"slipwalk"};
   argv_text.insert(argv_text.end(), inv.args.begin(), inv.args.end());
   std::vector<char*> argv;
+  argv.reserve(argv_text.size() + 1);
   for (std::string& a : argv_text) {
     argv.push_back(a.data());
   }
@@ -189,8 +190,9 @@ std::string json_nonfinite(const nlohmann::json& j, const std::string& path,
   if (j.is_object() || j.is_array()) {
     std::size_t i = 0;
     for (auto it = j.begin(); it != j.end(); ++it, ++i) {
-      const std::string key = j.is_object() ? it.key() : std::to_string(i);
-      std::string bad = json_nonfinite(*it, path + "/" + key, root);
+      std::string child = path;
+      child.append("/").append(j.is_object() ? it.key() : std::to_string(i));
+      std::string bad = json_nonfinite(*it, child, root);
       if (!bad.empty()) {
         return bad;
       }
