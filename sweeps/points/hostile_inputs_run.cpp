@@ -47,12 +47,14 @@ struct Outcome {
   std::string err;
 };
 
-std::string read_text(const fs::path& path, std::size_t limit = 64ULL << 20) {
+/// The file's first `limit` bytes (a runaway output is judged by its size, never read whole).
+std::string read_text(const fs::path& path, std::uintmax_t limit = 64ULL << 20) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
-  std::string text;
-  text.resize(limit);
-  in.read(text.data(), static_cast<std::streamsize>(limit));
-  text.resize(static_cast<std::size_t>(in.gcount()));
+  std::string text(static_cast<std::size_t>(ec ? 0 : std::min(size, limit)), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
   return text;
 }
 
