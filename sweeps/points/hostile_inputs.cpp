@@ -350,6 +350,15 @@ Case magnitude_case(std::uint64_t seed, long long index) {
         c.run.args.push_back(o.option + value);
       }
       c.place = option_place(c.run.args.back());
+      // The thresholds F > μ_s m g, F > μ_s M g (§2.3), M > m and L_max > L_min tie options
+      // together; the message may name the other one of a pair.
+      const std::vector<std::string> force = {"--force", "--mu", "--mu-s", "--m", "--M", "--g"};
+      const std::vector<std::string> length = {"--L-min", "--L-max"};
+      for (const auto* group : {&force, &length}) {
+        if (std::find(group->begin(), group->end(), c.place) != group->end()) {
+          c.also = *group;
+        }
+      }
       const std::string method =
           rng.pick(std::vector<std::string>{"exact", "rootfind", "analytic", "cvode"});
       c.run.args.push_back("--method=" + method);

@@ -60,9 +60,12 @@ struct Case {
   std::vector<std::string> fifos;    ///< named pipes (inputs that never deliver)
   std::vector<std::pair<std::string, std::string>> symlinks;  ///< (link, target)
   Invocation run;
-  std::set<int> exits = {0, 1, 2};   ///< the exit codes the contract allows for this input
-  std::string place;                 ///< an exit-2 message must contain it ("" = any)
-  bool place_line = false;           ///< ... followed by ":<line>"
+  std::set<int> exits = {0, 1, 2};  ///< the exit codes the contract allows for this input
+  std::string place;                ///< an exit-2 message must contain it ("" = any)
+  bool place_line = false;          ///< ... followed by ":<line>"
+  /// Other places an exit-2 message may name instead (an option bound to the one set by a
+  /// relation, such as M > m or F > μ_s m g, may be the one named).
+  std::vector<std::string> also;
   std::vector<std::string> outputs;  ///< what exit 0 must leave (relative paths)
   std::string output;                ///< the output judged for non-finite numbers ("" = stdout)
   Output output_kind = Output::kNone;

@@ -3,6 +3,7 @@
 // CRLF line ends.
 #include <signal.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -419,8 +420,11 @@ Case loss_case(std::uint64_t seed, long long index) {
             t.fields.push_back(rng.pick(t.fields));
             c = scene_case("scene with a key of " + t.header + " twice", toml_text(s));
           } else {
-            s.push_back(s[2]);
-            c = scene_case("scene with " + s[2].header + " twice", toml_text(s));
+            // [run] twice (an array of tables such as [[robot.leg]] may repeat; a table not)
+            const auto run = std::find_if(s.begin(), s.end(),
+                                          [](const Table& t) { return t.header == "[run]"; });
+            s.push_back(*run);
+            c = scene_case("scene with [run] twice", toml_text(s));
           }
           break;
         }

@@ -400,7 +400,10 @@ void judge_ending(const Case& c, const Invocation& inv, const Outcome& o, Verdic
           (!c.place_line ||
            (at + c.place.size() + 1 < o.err.size() && o.err[at + c.place.size()] == ':' &&
             std::isdigit(static_cast<unsigned char>(o.err[at + c.place.size() + 1]))));
-      if (!line_ok) {
+      const bool also_ok = std::any_of(c.also.begin(), c.also.end(), [&](const std::string& p) {
+        return o.err.find(p) != std::string::npos;
+      });
+      if (!line_ok && !also_ok) {
         fault(v, v.no_place,
               "exit 2 not naming " + c.place + (c.place_line ? ":<line>" : "") + ": " +
                   first_line(o.err));
