@@ -34,6 +34,9 @@ namespace slipwalk::sweeps::points {
 /// The long run of the Coulomb solver on random stress frames, §3.4 (coulomb_long_run.cpp).
 [[nodiscard]] std::vector<PointKind> coulomb_long_run_kinds();
 
+/// The hostile-input campaign against the binary itself (hostile_inputs_kind.cpp).
+[[nodiscard]] std::vector<PointKind> hostile_input_kinds();
+
 /// Every point kind of every family, in the order of families.cpp.
 [[nodiscard]] std::span<const PointKind> all_kinds();
 
