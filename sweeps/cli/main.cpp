@@ -9,7 +9,13 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/json_input.hpp"
 #include "sweeps/cli/commands.hpp"
+
+namespace {
+/// The longest error message printed: room for a path, a place and a sentence.
+constexpr std::size_t kMaxMessageBytes = 1024;
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"slipwalk: multi-legged locomotion with slipping — reproduce, check, extend"};
@@ -35,21 +41,27 @@ int main(int argc, char** argv) {
     }
     return false;
   };
+  // A message may quote what the user gave (an option's value, a name from a file); it is cut so
+  // that a value of megabytes cannot come back as a message of megabytes.
+  const auto report = [](const char* what, int code) {
+    std::cerr << "slipwalk: error: " << slipwalk::core::text_excerpt(what, kMaxMessageBytes)
+              << "\n";
+    return code;
+  };
   try {
     app.parse(argc, argv);
     return stdout_failed() ? 1 : 0;
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    const int code = app.exit(e);
+    return stdout_failed() ? 1 : code;
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    const int code = app.exit(e);
+    return stdout_failed() ? 1 : code;
   } catch (const CLI::ParseError& e) {
-    std::cerr << "slipwalk: error: " << e.what() << "\n";
-    return 2;
+    return report(e.what(), 2);
   } catch (const slipwalk::core::InputError& e) {
-    std::cerr << "slipwalk: error: " << e.what() << "\n";
-    return 2;
+    return report(e.what(), 2);
   } catch (const std::exception& e) {
-    std::cerr << "slipwalk: error: " << e.what() << "\n";
-    return 1;
+    return report(e.what(), 1);
   }
 }

@@ -162,6 +162,10 @@ TEST(CliOutputs, WhatGoesToAFullStdoutIsAFailure) {
       {"model", "--in", (d / "frame.json").string()},
       {"model", "--in", (d / "frame.json").string(), "--out", "-"},
       {"kinds"},
+      {"--help"},
+      {"--help-all"},
+      {"run", "--help"},
+      {"inchworm", "vss", "--help"},
   };
   for (const auto& args : commands) {
     std::string command = shell_quote(SLIPWALK_BINARY);
@@ -172,6 +176,24 @@ TEST(CliOutputs, WhatGoesToAFullStdoutIsAFailure) {
     EXPECT_TRUE(WIFEXITED(ok) && WEXITSTATUS(ok) == 0) << command;
     const int full = std::system((command + " >/dev/full 2>/dev/null").c_str());
     EXPECT_TRUE(WIFEXITED(full) && WEXITSTATUS(full) == 1) << command;
+  }
+}
+
+TEST(CliOutputs, AMessageQuotingAHugeValueStaysShort) {
+  // Every way a message can quote the user: an option's value, a subcommand, a file name.
+  const std::string huge(60'000, 'x');  // one argument may hold at most 128 KiB
+  const std::vector<std::vector<std::string>> commands = {
+      {"inchworm", "vss", "--mu", "1", "--force=" + huge},
+      {"inchworm", "vss", "--mu", "1", "--force", "1" + std::string(60'000, '0')},
+      {huge},
+      {"run", huge, "--out", "o.csv"},
+      {"model", "--in", huge},
+  };
+  for (const auto& args : commands) {
+    const CommandResult r = run_slipwalk(args);
+    EXPECT_EQ(r.exit_code, 2) << args.size();
+    EXPECT_EQ(r.err.rfind("slipwalk: error: ", 0), 0U);
+    EXPECT_LT(r.err.size(), 2000U) << r.err.substr(0, 200);
   }
 }
 
