@@ -14,7 +14,7 @@ namespace {
 Outcome parsed(std::string_view bytes, int legs) {
   try {
     const auto B = scene::parse_residual(bytes, "fuzz_B.csv", legs);
-    require(B.cols() == 2 * legs, "B has 2 columns per leg");
+    require(B.cols() == 2 * static_cast<Eigen::Index>(legs), "B has 2 columns per leg");
     require(B.allFinite(), "an accepted B is finite");
     return Outcome::kAccepted;
   } catch (const core::InputError&) {
