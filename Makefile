@@ -100,15 +100,16 @@ $(FUZZ_BUILD)/CMakeCache.txt: | deps
 
 fuzz: deps $(FUZZ_BUILD)/CMakeCache.txt
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZERS))
-	@set -e; for f in $(FUZZERS); do \
+	@failed=""; for f in $(FUZZERS); do \
 	  corpus=$(FUZZ_BUILD)/corpus/$$f; mkdir -p $$corpus $(FUZZ_BUILD)/artifacts/$$f; \
 	  cp -n tests/fuzz/corpus/$$f/* $$corpus/ 2>/dev/null || true; \
 	  cp -n tests/fuzz/regressions/$$f/* $$corpus/ 2>/dev/null || true; \
 	  echo "== fuzz_$$f for $(FUZZ_SECONDS) s"; \
 	  $(SANITIZE_ENV) $(FUZZ_BUILD)/bin/fuzz_$$f $$corpus -max_total_time=$(FUZZ_SECONDS) \
 	    -timeout=10 -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1 \
-	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/$$f/; \
-	done
+	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/$$f/ || failed="$$failed $$f"; \
+	done; \
+	if [ -n "$$failed" ]; then echo "make fuzz: failures in:$$failed (inputs in $(FUZZ_BUILD)/artifacts/)"; exit 1; fi
 
 clean:
 	rm -rf $(BUILD)
