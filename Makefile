@@ -15,7 +15,8 @@ DEBIAN_PACKAGES := cmake g++ make pkg-config git \
   libmujoco-dev \
   python3 python3-matplotlib python3-numpy python3-markdown chromium
 
-.PHONY: all deps build test reproduce reproduce-quick bench format format-check tidy clean
+.PHONY: all deps build test reproduce reproduce-quick bench format format-check tidy clean \
+  sanitize sanitize-quick fuzz
 
 all: build
 
@@ -63,6 +64,52 @@ format-check:
 
 tidy: build
 	find lib sweeps -name '*.cpp' | xargs -P $(JOBS) -n 4 clang-tidy -p $(BUILD) --quiet
+
+# Everything under AddressSanitizer + UBSan (g++), in its own build folder: asserts on (no
+# NDEBUG), -O1 and line tables for readable reports. Tests that time or count allocations skip
+# there and say why (SLIPWALK_SANITIZED). `sanitize` runs the whole suite; `sanitize-quick` (CI)
+# builds and runs the label sanitize_quick of tests/CMakeLists.txt: the readers, the contact and
+# friction searches and the fuzz replay.
+SANITIZE_BUILD ?= build-sanitize
+SANITIZE_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+
+$(SANITIZE_BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g1" \
+	  -DSLIPWALK_SANITIZE=ON -DSLIPWALK_BENCHMARKS=OFF $(CMAKE_ARGS)
+
+sanitize: deps $(SANITIZE_BUILD)/CMakeCache.txt
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	cd $(SANITIZE_BUILD) && $(SANITIZE_ENV) ctest --output-on-failure -j $(JOBS)
+
+sanitize-quick: deps $(SANITIZE_BUILD)/CMakeCache.txt
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target sanitize_quick
+	cd $(SANITIZE_BUILD) && $(SANITIZE_ENV) ctest --output-on-failure -j $(JOBS) -L sanitize_quick
+
+# libFuzzer (clang): every tests/fuzz/fuzz_<name>.cpp for FUZZ_SECONDS each, from a copy of its
+# seed corpus and regressions in $(FUZZ_BUILD)/corpus/<name> (new inputs stay there, never in the
+# source tree); crashes land in $(FUZZ_BUILD)/artifacts/<name>/. FUZZERS picks some.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZERS      ?= $(patsubst tests/fuzz/fuzz_%.cpp,%,$(wildcard tests/fuzz/fuzz_*.cpp))
+
+$(FUZZ_BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g1" \
+	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSLIPWALK_FUZZ=ON \
+	  -DBUILD_TESTING=OFF -DSLIPWALK_BENCHMARKS=OFF -DSLIPWALK_MUJOCO=OFF $(CMAKE_ARGS)
+
+fuzz: deps $(FUZZ_BUILD)/CMakeCache.txt
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZERS))
+	@failed=""; for f in $(FUZZERS); do \
+	  corpus=$(FUZZ_BUILD)/corpus/$$f; mkdir -p $$corpus $(FUZZ_BUILD)/artifacts/$$f; \
+	  cp -n tests/fuzz/corpus/$$f/* $$corpus/ 2>/dev/null || true; \
+	  cp -n tests/fuzz/regressions/$$f/* $$corpus/ 2>/dev/null || true; \
+	  echo "== fuzz_$$f for $(FUZZ_SECONDS) s"; \
+	  $(SANITIZE_ENV) $(FUZZ_BUILD)/bin/fuzz_$$f $$corpus -max_total_time=$(FUZZ_SECONDS) \
+	    -timeout=10 -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1 \
+	    -artifact_prefix=$(FUZZ_BUILD)/artifacts/$$f/ || failed="$$failed $$f"; \
+	done; \
+	if [ -n "$$failed" ]; then echo "make fuzz: failures in:$$failed (inputs in $(FUZZ_BUILD)/artifacts/)"; exit 1; fi
 
 clean:
 	rm -rf $(BUILD)

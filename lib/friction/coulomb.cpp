@@ -384,6 +384,9 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
         ks = v < best ? k : ks;
         best = std::min(v, best);
       }
+      if (ks < 0) {
+        return false;  // no foot slides at a finite slip speed (constants out of scale)
+      }
     }
     const auto Bk = B(ks);
     const Eigen::Vector2d r = Bk * y + d(ks);
