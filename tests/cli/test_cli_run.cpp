@@ -196,7 +196,7 @@ TEST(CliRun, BadScenesExitTwoNamingTheirPlaceAndWriteNothing) {
   const std::vector<Case> cases = {
       {replace(kTripod, "frequency", "frequncy"), "scene.toml:6:1", "did you mean 'frequency'?"},
       {replace(kTripod, "0.5", "\"fast\""), "scene.toml:6:13", "expected a number, got a string"},
-      {replace(kTripod, "0.5", "-2"), "scene.toml:6:13", "must be > 0 Hz"},
+      {replace(kTripod, "0.5", "-2"), "scene.toml:6:13", "must be in [1e-06, 1000] Hz"},
       {replace(kTripod, "duration = 2.0\n", ""), "scene.toml:8:1",
        "missing required key 'duration'"},
       {replace(kTripod, "law = \"viscous\"", "law = \"viscous\"\ntol = 1e-8"), "scene.toml:14:7",
