@@ -6,6 +6,9 @@
 // descriptor tables, one entry each (scene/gaits.cpp, scene/friction_laws.cpp): the robot names,
 // gait kinds, laws and their keys below are those entries'.
 //
+// Every number has a range (scene/ranges.hpp, with its unit), checked where it is read; a run
+// whose CSV could pass kMaxRunBytes (below) is refused at its dt or steps with the estimate.
+//
 //   [robot]                  # required
 //   name = "bigant"          # "bigant" | "multipod" | "quadruped" | "disk" | "legs" (a leg
 //                            # table: mass and [[robot.leg]] tables, gait "foot_path";

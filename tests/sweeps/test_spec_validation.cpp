@@ -24,7 +24,6 @@
 namespace slipwalk::sweeps {
 namespace {
 
-using testing::files_under;
 using testing::run_slipwalk;
 using testing::ScratchDir;
 using testing::write_text;
