@@ -34,6 +34,13 @@ void tally(const contact::Frame& f, double t, TrajectorySummary& s) {
   }
 }
 
+void stop_non_finite(long long n, double t, TrajectorySummary& s, std::string_view what) {
+  s.non_finite_step = n;
+  s.frames = n;
+  s.non_finite = "t = " + core::format_double(t) + " s (step " + std::to_string(n) + "): ";
+  s.non_finite.append(what).append("; the run stopped there");
+}
+
 void check_run(const contact::Robot& robot, const FootKinematics& feet,
                const TrajectoryOptions& options, const TrajectoryData& data,
                const TrajectorySink& sink) {

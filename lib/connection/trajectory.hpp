@@ -25,6 +25,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <string_view>
 
 #include "connection/local_connection.hpp"
 #include "connection/terrain_kernels.hpp"
@@ -224,12 +225,31 @@ struct TrajectorySummary {
   long long not_unique = 0;          ///< frames with a continuum of balancing body velocities
   double max_friction_residual = 0;  ///< the largest friction.residual over the frames
   std::string message;               ///< the first problem ("t = 1.5: ..."), empty if none
+  /// The step whose pose or body velocity was not finite, -1 if none. Such a state cannot turn
+  /// finite again, so the run stopped there: that frame was not handed to the sink, `frames`
+  /// counts the frames before it, and `non_finite` says where ("t = 1.5 s (step 150): ...").
+  /// Callers treat it as a failed run (a scene run exits 1), never as a result.
+  long long non_finite_step = -1;
+  std::string non_finite;
 };
+
+namespace detail {
+/// True when the pose and the velocity that moves it are all finite: one sum and one compare
+/// per step (NaN and ±inf propagate through the sum; finite values of the model's ranges cannot
+/// overflow it).
+[[nodiscard]] inline bool state_is_finite(const core::Pose2& pose, const Eigen::Vector3d& v) {
+  return std::isfinite(pose.x + pose.y + pose.theta + v(0) + v(1) + v(2));
+}
+/// Records the stop at step n, time t in `summary`; `what` says which state.
+void stop_non_finite(long long n, double t, TrajectorySummary& summary,
+                     std::string_view what = "the pose or the body velocity is not finite");
+}  // namespace detail
 
 /// Runs the trajectory: for n = 0 … steps at t_n, feet(t_n) → data.frame.q, q̇; spring support;
 /// the law's balance → v_model; residual → v_model + B q̇; filter → v_body; slip (from v_model);
-/// noise → measured pose; sink(step); pose ← pose · exp(v_body dt). Defined in
-/// trajectory_kernel.hpp. Throws core::InputError for bad options, effects or data sizes.
+/// noise → measured pose; sink(step); pose ← pose · exp(v_body dt). Stops early when the pose or
+/// v_body is not finite (summary.non_finite_step). Defined in trajectory_kernel.hpp. Throws
+/// core::InputError for bad options, effects or data sizes.
 template <class E>
 TrajectorySummary integrate(const contact::Robot& robot, const FootKinematics& feet,
                             const TrajectoryOptions& options, E effects, TrajectoryData& data,

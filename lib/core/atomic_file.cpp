@@ -323,6 +323,21 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+void commit_with_sidecar(AtomicFile& result, AtomicFile& sidecar) {
+  result.finish();
+  sidecar.finish();
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(result.target(), ec)) {
+    std::filesystem::remove(result.target(), ec);
+    if (ec) {
+      throw ComputationError(result.target().string() +
+                             ": cannot replace the earlier result: " + ec.message());
+    }
+  }
+  sidecar.commit();
+  result.commit();
+}
+
 void write_file_atomically(const std::filesystem::path& target, const std::string& text) {
   AtomicFile file(target);
   file.stream() << text;

@@ -54,6 +54,7 @@ class AtomicFile {
   ~AtomicFile();
 
   std::ofstream& stream() { return out_; }
+  [[nodiscard]] const std::filesystem::path& target() const { return target_; }
   /// Throws ComputationError if a write has failed so far (call it in long write loops, so that a
   /// full disk stops the run rather than the end of it).
   void check() const;
@@ -74,6 +75,12 @@ class AtomicFile {
   bool finished_ = false;
   bool committed_ = false;
 };
+
+/// Commits a result file and its sidecar so that a reader never sees the result without its own
+/// sidecar: both are finished first, then an earlier result at the target is removed, the sidecar
+/// renamed, and the result renamed last. A process killed in between leaves at most a sidecar
+/// without its result, which every reader takes as no result (the next run replaces it).
+void commit_with_sidecar(AtomicFile& result, AtomicFile& sidecar);
 
 /// Writes `text` to `target` atomically.
 void write_file_atomically(const std::filesystem::path& target, const std::string& text);

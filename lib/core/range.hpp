@@ -14,11 +14,11 @@ namespace slipwalk::core {
 
 /// An interval of admissible values; an open end excludes its bound.
 struct Range {
-  double lo = 0.0;             ///< lower bound
-  double hi = 0.0;             ///< upper bound
-  bool lo_open = false;        ///< true: lo itself is not admissible
-  bool hi_open = false;        ///< true: hi itself is not admissible
-  std::string_view unit = "";  ///< printed after the interval ("kg", "m/s^2", "" for none)
+  double lo = 0.0;        ///< lower bound
+  double hi = 0.0;        ///< upper bound
+  bool lo_open = false;   ///< true: lo itself is not admissible
+  bool hi_open = false;   ///< true: hi itself is not admissible
+  std::string_view unit;  ///< printed after the interval ("kg", "m/s^2", "" for none)
 
   [[nodiscard]] bool contains(double v) const {
     if (!std::isfinite(v)) {

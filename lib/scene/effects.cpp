@@ -5,13 +5,12 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <vector>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "scene/ranges.hpp"
 
 namespace slipwalk::scene {
 
@@ -27,7 +26,8 @@ Eigen::Vector2d read_pair(const TableReader& t, const toml::node& node) {
            std::string("expected a pair [wx, wy], got ") +
                (a != nullptr ? "an array of " + std::to_string(a->size()) : type_name(node)));
   }
-  return {t.number(*a->get(0), "w"), t.number(*a->get(1), "w")};
+  return {t.number_in(*a->get(0), "w", ranges::kAnisotropy),
+          t.number_in(*a->get(1), "w", ranges::kAnisotropy)};
 }
 
 std::string_view trim(std::string_view s) {
@@ -98,6 +98,7 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> parse_residual(std::string_view text,
         throw InputError(where + ":" + std::to_string(column),
                          "'" + std::string(value) + "' is not a finite number");
       }
+      core::require_in(where + ":" + std::to_string(column), x, ranges::kResidualEntry);
       if (col < cols) {
         B(row, col) = x;
       }
@@ -147,15 +148,8 @@ ResidualEffect read_residual(const TableReader& residual, const std::string& sce
 
 NoiseEffect read_noise(const TableReader& noise) {
   NoiseEffect effect;
-  const toml::node& sigma = noise.required("sigma");
-  effect.sigma = noise.number(sigma, "sigma");
-  noise.check(effect.sigma >= 0.0, sigma, "sigma",
-              "must be >= 0 m, got " + core::format_double(effect.sigma));
-  if (const toml::node* n = noise.find("sigma_theta")) {
-    effect.sigma_theta = noise.number(*n, "sigma_theta");
-    noise.check(effect.sigma_theta >= 0.0, *n, "sigma_theta",
-                "must be >= 0 rad, got " + core::format_double(effect.sigma_theta));
-  }
+  effect.sigma = noise.number_in(noise.required("sigma"), "sigma", ranges::kNoiseXY);
+  noise.read_in("sigma_theta", ranges::kNoiseTheta, effect.sigma_theta);
   if (const toml::node* n = noise.find("seed")) {
     const long long seed = noise.integer(*n, "seed");
     noise.check(seed >= 0, *n, "seed", "must be >= 0, got " + std::to_string(seed));

@@ -9,6 +9,7 @@
 #include "contact/robot.hpp"
 #include "core/csv.hpp"
 #include "scene/effects.hpp"
+#include "scene/ranges.hpp"
 
 namespace slipwalk::scene {
 
@@ -81,12 +82,7 @@ const std::vector<FrictionLawEntry>& friction_laws() {
           .keys = {"tol", "max_iterations"},
           .read =
               [](const TableReader& friction, int, FrictionEffect& effect) {
-                if (const toml::node* n = friction.find("tol")) {
-                  const double tol = friction.number(*n, "tol");
-                  friction.check(tol > 0.0, *n, "tol",
-                                 "must be > 0, got " + core::format_double(tol));
-                  effect.coulomb.tol = tol;
-                }
+                friction.read_in("tol", ranges::kCoulombTolerance, effect.coulomb.tol);
                 if (const toml::node* n = friction.find("max_iterations")) {
                   const long long m = friction.integer(*n, "max_iterations");
                   friction.check(m >= 1 && m <= 1'000'000, *n, "max_iterations",

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "core/csv.hpp"
+#include "scene/ranges.hpp"
 
 namespace slipwalk::scene {
 
@@ -37,20 +38,10 @@ struct GaitEntry {
   robots::Walker (*walker)(const Options&);          ///< the factory (checks the options)
 };
 
-/// Reads `key` into `value` if the table has it (a finite number); ranges are checked here for the
-/// options every gait shares and by the robot factories for the rest (scene.cpp checks the options
-/// by building the walker once and reports a factory's error at its key).
-void read_number(const TableReader& table, std::string_view key, double& value) {
-  if (const toml::node* n = table.find(key)) {
-    value = table.number(*n, key);
-  }
-}
-
+/// Every number is read in its range (scene/ranges.hpp), at its key; the robot factories check
+/// the options again (scene.cpp builds the walker once and reports a factory's error at its key).
 void read_frequency(const TableReader& gait, double& value) {
-  read_number(gait, "frequency", value);
-  if (const toml::node* n = gait.find("frequency")) {
-    gait.check(value > 0.0, *n, "frequency", "must be > 0 Hz, got " + core::format_double(value));
-  }
+  gait.read_in("frequency", ranges::kFrequency, value);
 }
 
 /// [robot] legs, an integer in [lo, hi] (even when `even`); `what` starts the range message.
@@ -82,13 +73,9 @@ const auto& table() {
               [](const GaitTables& t) {
                 TripodGait g;
                 read_frequency(t.gait, g.frequency);
-                read_number(t.gait, "steer", g.steer);
-                if (const toml::node* n = t.gait.find("steer")) {
-                  t.gait.check(std::abs(g.steer) <= 1.0, *n, "steer",
-                               "must be in [-1, 1], got " + core::format_double(g.steer));
-                }
-                read_number(t.gait, "duty", g.duty);
-                read_number(t.gait, "sweep", g.sweep);
+                t.gait.read_in("steer", ranges::kSteer, g.steer);
+                t.gait.read_in("duty", ranges::kDuty, g.duty);
+                t.gait.read_in("sweep", ranges::kSweep, g.sweep);
                 return g;
               },
           .to_json =
@@ -110,7 +97,7 @@ const auto& table() {
               [](const GaitTables& t) {
                 MetachronalGait g;
                 read_frequency(t.gait, g.frequency);
-                read_number(t.gait, "sweep", g.sweep);
+                t.gait.read_in("sweep", ranges::kSweep, g.sweep);
                 return g;
               },
           .to_json = [](const MetachronalGait& g, json& out) { out["sweep"] = g.sweep; },
@@ -127,12 +114,12 @@ const auto& table() {
               [](const GaitTables& t) {
                 UndulationGait g;
                 read_frequency(t.gait, g.frequency);
-                read_number(t.gait, "dphi", g.dphi);
-                read_number(t.gait, "roll_amplitude", g.roll_amplitude);
-                read_number(t.gait, "yaw_amplitude", g.yaw_amplitude);
+                t.gait.read_in("dphi", ranges::kPhaseLag, g.dphi);
+                t.gait.read_in("roll_amplitude", ranges::kRollAmplitude, g.roll_amplitude);
+                t.gait.read_in("yaw_amplitude", ranges::kYawAmplitude, g.yaw_amplitude);
                 g.legs = read_legs(t.robot, g.legs, 6, 12, true,
                                    "the multipod has 6, 8, 10 or 12 legs, got ");
-                read_number(t.robot, "stiffness", g.stiffness);
+                t.robot.read_in("stiffness", ranges::kStiffness, g.stiffness);
                 return g;
               },
           .to_json =
@@ -156,9 +143,9 @@ const auto& table() {
               [](const GaitTables& t) {
                 TrotGait g;
                 read_frequency(t.gait, g.frequency);
-                read_number(t.gait, "duty", g.duty);
-                read_number(t.gait, "stride", g.stride);
-                read_number(t.gait, "swing_height", g.swing_height);
+                t.gait.read_in("duty", ranges::kDuty, g.duty);
+                t.gait.read_in("stride", ranges::kTrotStride, g.stride);
+                t.gait.read_in("swing_height", ranges::kTrotSwingHeight, g.swing_height);
                 return g;
               },
           .to_json =
@@ -182,11 +169,7 @@ const auto& table() {
                 read_frequency(t.gait, g.frequency);
                 g.legs = read_legs(t.robot, g.legs, 3, 1000, false,
                                    "the disk robot has 3 to 1000 legs, got ");
-                read_number(t.robot, "radius", g.radius);
-                if (const toml::node* r = t.robot.find("radius")) {
-                  t.robot.check(g.radius > 0.0, *r, "radius",
-                                "must be > 0 m, got " + core::format_double(g.radius));
-                }
+                t.robot.read_in("radius", ranges::kRadius, g.radius);
                 return g;
               },
           .to_json =

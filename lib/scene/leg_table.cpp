@@ -6,6 +6,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "scene/ranges.hpp"
 
 namespace slipwalk::scene {
 
@@ -86,8 +87,7 @@ LegTableGait read_leg_table(const TableReader& robot, const TableReader& gait,
   static const TableSchema leg_schema = {"robot.leg", {"name", "hip", "K", "mu", "phase"}};
   LegTableGait g;
   const toml::node& mass = robot.required("mass");
-  g.mass = robot.number(mass, "mass");
-  robot.check(g.mass > 0.0, mass, "mass", "must be > 0 kg, got " + core::format_double(g.mass));
+  g.mass = robot.number_in(mass, "mass", ranges::kMass);
   const toml::node* legs = robot.find("leg");
   if (legs == nullptr) {
     throw core::InputError(robot.origin(),
@@ -123,34 +123,18 @@ LegTableGait read_leg_table(const TableReader& robot, const TableReader& gait,
               (xyz != nullptr ? "an array of " + std::to_string(xyz->size()) : type_name(hip)));
     }
     for (int i = 0; i < 3; ++i) {
-      spec.hip(i) = leg.number(*xyz->get(static_cast<std::size_t>(i)), "hip");
+      spec.hip(i) =
+          leg.number_in(*xyz->get(static_cast<std::size_t>(i)), "hip", ranges::kCoordinate);
     }
-    const toml::node& K = leg.required("K");
-    spec.K = leg.number(K, "K");
-    leg.check(spec.K > 0.0, K, "K", "must be > 0 N/m, got " + core::format_double(spec.K));
-    if (const toml::node* n = leg.find("mu")) {
-      spec.mu = leg.number(*n, "mu");
-      leg.check(spec.mu >= 0.0, *n, "mu", "must be >= 0, got " + core::format_double(spec.mu));
-    }
-    if (const toml::node* n = leg.find("phase")) {
-      spec.phase = leg.number(*n, "phase");
-      leg.check(spec.phase >= 0.0 && spec.phase < 1.0, *n, "phase",
-                "must be in [0, 1) cycles, got " + core::format_double(spec.phase));
-    }
+    spec.K = leg.number_in(leg.required("K"), "K", ranges::kStiffness);
+    leg.read_in("mu", ranges::kFrictionCoefficient, spec.mu);
+    leg.read_in("phase", ranges::kPhase, spec.phase);
     g.legs.push_back(spec);
   }
-  auto positive = [&](std::string_view key, double& value, bool zero_ok) {
-    if (const toml::node* n = gait.find(key)) {
-      value = gait.number(*n, key);
-      gait.check(zero_ok ? value >= 0.0 : value > 0.0, *n, key,
-                 std::string(zero_ok ? "must be >= 0" : "must be > 0") + ", got " +
-                     core::format_double(value));
-    }
-  };
-  positive("frequency", g.frequency, false);
-  positive("stride", g.stride, false);
-  positive("height", g.height, false);
-  positive("lift", g.lift, true);
+  gait.read_in("frequency", ranges::kFrequency, g.frequency);
+  gait.read_in("stride", ranges::kLength, g.stride);
+  gait.read_in("height", ranges::kLength, g.height);
+  gait.read_in("lift", ranges::kLengthOrZero, g.lift);
   return g;
 }
 

@@ -36,6 +36,52 @@ std::vector<std::string> run_columns(const robots::Walker& walker, bool filtered
   return cols;
 }
 
+std::vector<std::string> scene_columns(const Scene& scene, const robots::Walker& walker) {
+  const bool filtered = scene.filter.has_value() || scene.residual.has_value();
+  const bool phases = static_cast<bool>(walker.phase);
+  std::vector<std::string> columns = run_columns(walker, filtered, phases, scene.noise.has_value());
+  // On a slope or stairs (§5.2): the body origin and each toe (before compression) in the world,
+  // x, y horizontal and z up (terrain::body_world, toe_world), for Figs. 5.2 and 5.3.
+  if (scene.terrain.index() != 0) {
+    columns.insert(columns.end(), {"bx", "by", "bz"});
+    const bool named = static_cast<int>(walker.leg_names.size()) == walker.legs();
+    for (int k = 0; k < walker.legs(); ++k) {
+      const std::string leg =
+          named ? walker.leg_names[static_cast<std::size_t>(k)] : std::to_string(k);
+      for (const char* c : {"px_", "py_", "pz_"}) {
+        columns.push_back(std::string(c).append(leg));
+      }
+    }
+  }
+  return columns;
+}
+
+RunSize estimate_run_size(const Scene& scene, const robots::Walker& walker) {
+  RunSize size;
+  size.rows = scene.steps + 1;
+  size.columns = static_cast<long long>(scene_columns(scene, walker).size());
+  size.bytes =
+      static_cast<double>(size.rows + 1) * static_cast<double>(size.columns) * kMaxCellBytes;
+  return size;
+}
+
+void check_run_size(const Scene& scene, const robots::Walker& walker) {
+  const RunSize size = estimate_run_size(scene, walker);
+  if (size.bytes > kMaxRunBytes) {
+    std::string what = scene.run_key;
+    what.append(": the run would write ")
+        .append(std::to_string(size.rows))
+        .append(" rows of ")
+        .append(std::to_string(size.columns))
+        .append(" columns, up to ")
+        .append(core::format_double(size.bytes / 1e9))
+        .append(" GB; at most ")
+        .append(core::format_double(kMaxRunBytes / 1e9))
+        .append(" GB (a larger dt, fewer steps or a shorter duration)");
+    throw core::InputError(scene.run_origin.empty() ? scene.path : scene.run_origin, what);
+  }
+}
+
 RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesystem::path& csv_path,
                     const nlohmann::json& extra, std::ostream* progress) {
   std::filesystem::path sidecar_path = csv_path;
@@ -45,25 +91,13 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
     what.append(csv_path.string()).append("' would be overwritten by its sidecar; use .csv");
     throw core::InputError("--out", what);
   }
+  check_run_size(scene, sim.walker);
   RunResult result;
   const bool filtered = scene.filter.has_value() || scene.residual.has_value();
   const bool phases = static_cast<bool>(sim.walker.phase);
   const bool noisy = scene.noise.has_value();
-  result.columns = run_columns(sim.walker, filtered, phases, noisy);
-  // On a slope or stairs (§5.2): the body origin and each toe (before compression) in the world,
-  // x, y horizontal and z up (terrain::body_world, toe_world), for Figs. 5.2 and 5.3.
   const bool terrain_columns = scene.terrain.index() != 0;
-  if (terrain_columns) {
-    result.columns.insert(result.columns.end(), {"bx", "by", "bz"});
-    const bool named = static_cast<int>(sim.walker.leg_names.size()) == sim.walker.legs();
-    for (int k = 0; k < sim.walker.legs(); ++k) {
-      const std::string leg =
-          named ? sim.walker.leg_names[static_cast<std::size_t>(k)] : std::to_string(k);
-      for (const char* c : {"px_", "py_", "pz_"}) {
-        result.columns.push_back(std::string(c).append(leg));
-      }
-    }
-  }
+  result.columns = scene_columns(scene, sim.walker);
 
   // One row per frame, into a temporary file renamed when complete.
   core::AtomicFile file(csv_path);
@@ -102,12 +136,20 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
       }
     }
     csv.end_row();
-    if (progress != nullptr && (s.n + 1) % every == 0) {
+    if ((s.n + 1) % every != 0) {
+      return;
+    }
+    file.check();  // a full disk stops the run here, not at its end
+    if (progress != nullptr) {
       *progress << "slipwalk run: " << (s.n + 1) << "/" << frames
                 << " frames (t = " << core::format_double(s.t) << " s)" << std::endl;
     }
   });
   result.wall_s = core::seconds_since(start);
+  if (result.summary.non_finite_step >= 0) {
+    // The rows so far are not a result: the temporary goes with `file`.
+    throw core::ComputationError(scene.path + ": " + result.summary.non_finite);
+  }
   file.finish();
 
   // The provenance sidecar.
@@ -132,12 +174,11 @@ RunResult write_run(const Scene& scene, const Simulator& sim, const std::filesys
       {"threads", 1},
       {"provenance", core::build_provenance()},
   });
-  // Both files are complete before either is renamed: a failure leaves neither behind.
+  // Both files are complete before either is renamed (a failure leaves neither behind), and the
+  // CSV is renamed last: it is never seen without its sidecar.
   core::AtomicFile side(sidecar_path);
   side.stream() << sidecar.dump(1) << "\n";
-  side.finish();
-  file.commit();
-  side.commit();
+  core::commit_with_sidecar(file, side);
   return result;
 }
 

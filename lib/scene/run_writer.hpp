@@ -26,6 +26,28 @@ namespace slipwalk::scene {
 [[nodiscard]] std::vector<std::string> run_columns(const robots::Walker& walker, bool filtered,
                                                    bool phases, bool noisy = false);
 
+/// Every column of a run of `scene` by `walker`: run_columns() and, on a slope or stairs, the
+/// body's and each toe's world position (bx, by, bz, px_L, py_L, pz_L).
+[[nodiscard]] std::vector<std::string> scene_columns(const Scene& scene,
+                                                     const robots::Walker& walker);
+
+/// The size of a run's CSV, estimated before it runs.
+struct RunSize {
+  long long rows = 0;     ///< steps + 1 (and the header)
+  long long columns = 0;  ///< scene_columns()
+  double bytes = 0.0;     ///< an upper bound: every cell as wide as a cell can be
+};
+
+/// The widest CSV cell: a double at 17 significant digits ("-1.2345678901234567e-308") and a
+/// comma.
+inline constexpr double kMaxCellBytes = 25.0;
+
+[[nodiscard]] RunSize estimate_run_size(const Scene& scene, const robots::Walker& walker);
+
+/// Throws core::InputError at scene.run_origin (the [run] dt or steps, or the override that set
+/// them) naming the estimate when it passes kMaxRunBytes.
+void check_run_size(const Scene& scene, const robots::Walker& walker);
+
 struct RunResult {
   connection::TrajectorySummary summary;
   std::vector<std::string> columns;

@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <numbers>
 #include <stdexcept>
 
@@ -13,6 +11,8 @@
 #include "core/input_file.hpp"
 #include "scene/effects.hpp"
 #include "scene/friction_laws.hpp"
+#include "scene/ranges.hpp"
+#include "scene/run_writer.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace slipwalk::scene {
@@ -102,13 +102,6 @@ const toml::table& required_table(const toml::table& doc, std::string_view name,
   return *t;
 }
 
-/// Reads `key` into `value` if the table has it (a finite number).
-void read_number(const TableReader& table, std::string_view key, double& value) {
-  if (const toml::node* n = table.find(key)) {
-    value = table.number(*n, key);
-  }
-}
-
 /// The robot factories check their options (robots/check.hpp); an InputError of theirs names the
 /// option as "<factory>.<option>", which is re-raised at that key in the file.
 void check_with_factory(const Gait& g, const TableReader& robot, const TableReader& gait) {
@@ -132,9 +125,7 @@ void check_with_factory(const Gait& g, const TableReader& robot, const TableRead
 
 void read_run(const TableReader& run, Scene& scene) {
   const toml::node& duration = run.required("duration");
-  scene.duration = run.number(duration, "duration");
-  run.check(scene.duration > 0.0, duration, "duration",
-            "must be > 0 s, got " + core::format_double(scene.duration));
+  scene.duration = run.number_in(duration, "duration", ranges::kDuration);
   const toml::node* dt = run.find("dt");
   const toml::node* steps = run.find("steps");
   if (dt != nullptr && steps != nullptr) {
@@ -149,10 +140,11 @@ void read_run(const TableReader& run, Scene& scene) {
         scene.steps >= 1 && scene.steps <= kMaxSteps, *steps, "steps",
         "must be from 1 to " + std::to_string(kMaxSteps) + ", got " + std::to_string(scene.steps));
     scene.dt = scene.duration / static_cast<double>(scene.steps);
+    scene.run_origin = run.origin(*steps);
+    scene.run_key = "run.steps";
     return;
   }
-  scene.dt = run.number(*dt, "dt");
-  run.check(scene.dt > 0.0, *dt, "dt", "must be > 0 s, got " + core::format_double(scene.dt));
+  scene.dt = run.number_in(*dt, "dt", ranges::kStep);
   // The frames are t_n = n·dt, n = 0 … steps, and the last one is the duration: the duration
   // must be a whole number of steps (to rounding).
   const double ratio = scene.duration / scene.dt;
@@ -164,6 +156,8 @@ void read_run(const TableReader& run, Scene& scene) {
             "the duration must be a whole number of steps, got duration / dt = " +
                 core::format_double(ratio));
   scene.steps = static_cast<long long>(whole);
+  scene.run_origin = run.origin(*dt);
+  scene.run_key = "run.dt";
 }
 
 /// [terrain] (§5.2): kind = "flat" | "slope" | "stairs" and that kind's parameters only.
@@ -184,32 +178,18 @@ terrain::Terrain read_terrain(const TableReader& t) {
   }
   constexpr double kDeg = std::numbers::pi / 180.0;
   double heading_deg = 0.0;
-  read_number(t, "heading_deg", heading_deg);
+  t.read_in("heading_deg", ranges::kHeading, heading_deg);
   if (kind == "slope") {
     terrain::Slope slope;
-    const toml::node& angle = t.required("angle_deg");
-    const double deg = t.number(angle, "angle_deg");
-    t.check(deg >= 0.0 && deg < 90.0, angle, "angle_deg",
-            "must be in [0, 90) degrees, got " + core::format_double(deg));
-    slope.angle = deg * kDeg;
+    slope.angle = t.number_in(t.required("angle_deg"), "angle_deg", ranges::kSlopeAngle) * kDeg;
     slope.heading = heading_deg * kDeg;
-    read_number(t, "com_height", slope.com_height);
-    if (const toml::node* n = t.find("com_height")) {
-      t.check(slope.com_height >= 0.0, *n, "com_height",
-              "must be >= 0 m, got " + core::format_double(slope.com_height));
-    }
+    t.read_in("com_height", ranges::kLengthOrZero, slope.com_height);
     return slope;
   }
   terrain::Stairs stairs;
   stairs.heading = heading_deg * kDeg;
-  const toml::node& tread = t.required("tread");
-  stairs.tread = t.number(tread, "tread");
-  t.check(stairs.tread > 0.0, tread, "tread",
-          "must be > 0 m, got " + core::format_double(stairs.tread));
-  const toml::node& riser = t.required("riser");
-  stairs.riser = t.number(riser, "riser");
-  t.check(stairs.riser >= 0.0, riser, "riser",
-          "must be >= 0 m, got " + core::format_double(stairs.riser));
+  stairs.tread = t.number_in(t.required("tread"), "tread", ranges::kLength);
+  stairs.riser = t.number_in(t.required("riser"), "riser", ranges::kLengthOrZero);
   return stairs;
 }
 
@@ -240,17 +220,14 @@ Scene parse_scene(std::string_view text, const std::string& path) {
 
   // [run] and the effects.
   read_run(TableReader(required_table(doc, "run", path), schema_of("run"), path, all), scene);
-  const int legs = make_walker(scene.gait).legs();
+  const robots::Walker walker = make_walker(scene.gait);
+  const int legs = walker.legs();
   scene.friction = read_friction(
       TableReader(required_table(doc, "friction", path), schema_of("friction"), path, all), legs);
   if (const toml::table* t = table_of(doc, "filter")) {
     const TableReader filter(*t, schema_of("filter"), path, all);
     FilterEffect effect;
-    if (const toml::node* n = filter.find("gamma")) {
-      effect.gamma = filter.number(*n, "gamma");
-      filter.check(effect.gamma >= 0.0 && effect.gamma < 1.0, *n, "gamma",
-                   "must be in [0, 1), got " + core::format_double(effect.gamma));
-    }
+    filter.read_in("gamma", ranges::kFilterGamma, effect.gamma);
     scene.filter = effect;
   }
   if (const toml::table* t = table_of(doc, "residual")) {
@@ -262,6 +239,8 @@ Scene parse_scene(std::string_view text, const std::string& path) {
   if (const toml::table* t = table_of(doc, "terrain")) {
     scene.terrain = read_terrain(TableReader(*t, schema_of("terrain"), path, all));
   }
+  // The CSV's size, known now: refused here, at dt or steps, before anything runs.
+  check_run_size(scene, walker);
   return scene;
 }
 

@@ -6,6 +6,9 @@
 // descriptor tables, one entry each (scene/gaits.cpp, scene/friction_laws.cpp): the robot names,
 // gait kinds, laws and their keys below are those entries'.
 //
+// Every number has a range (scene/ranges.hpp, with its unit), checked where it is read; a run
+// whose CSV could pass kMaxRunBytes (below) is refused at its dt or steps with the estimate.
+//
 //   [robot]                  # required
 //   name = "bigant"          # "bigant" | "multipod" | "quadruped" | "disk" | "legs" (a leg
 //                            # table: mass and [[robot.leg]] tables, gait "foot_path";
@@ -103,6 +106,9 @@ struct Scene {
   double duration = 0.0;    ///< s
   double dt = 0.0;          ///< s
   long long steps = 0;      ///< duration = steps · dt; steps + 1 frames t = 0 … duration
+  std::string run_origin;   ///< file:line:col of the value that set the frame count ([run] dt
+                            ///< or steps, or a study's override), for the size limit's error
+  std::string run_key;      ///< that value's key path ("run.dt", "run.steps", "dt", ...)
   FrictionEffect friction;
   std::optional<FilterEffect> filter;      ///< present = the inertia filter is on
   std::optional<ResidualEffect> residual;  ///< present = B is added (§5.3.1)
@@ -112,6 +118,11 @@ struct Scene {
 
 /// The most steps a scene may ask for (a CSV row each).
 inline constexpr long long kMaxSteps = 10'000'000;
+
+/// The largest trajectory CSV a scene may ask for, in bytes (run_writer.hpp estimates it before
+/// anything runs: rows × columns × the widest cell). 4 GB is minutes of writing and far beyond
+/// what a figure needs; a longer run is split into several scenes or given a larger dt.
+inline constexpr double kMaxRunBytes = 4e9;
 
 /// Parses a scene from text; `path` names it in messages. Throws core::InputError naming
 /// path:line:col for every error the file can have (syntax, unknown key, wrong type, range,

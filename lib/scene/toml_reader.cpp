@@ -147,6 +147,27 @@ double TableReader::number(const toml::node& node, std::string_view key) const {
   return value;
 }
 
+double TableReader::number_in(const toml::node& node, std::string_view key,
+                              const core::Range& range) const {
+  double value = 0.0;
+  if (const auto* i = node.as_integer()) {
+    value = static_cast<double>(i->get());
+  } else if (const auto* f = node.as_floating_point()) {
+    value = f->get();
+  } else {
+    fail(node, key, std::string("expected a number, got ") + type_name(node));
+  }
+  check(range.contains(value), node, key,
+        "must be in " + range.describe() + ", got " + core::format_double(value));
+  return value;
+}
+
+void TableReader::read_in(std::string_view key, const core::Range& range, double& value) const {
+  if (const toml::node* n = find(key)) {
+    value = number_in(*n, key, range);
+  }
+}
+
 long long TableReader::integer(const toml::node& node, std::string_view key) const {
   const auto* i = node.as_integer();
   check(i != nullptr, node, key, std::string("expected an integer, got ") + type_name(node));

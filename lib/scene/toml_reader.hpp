@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/range.hpp"
+
 namespace slipwalk::scene {
 
 /// A table of a file and the keys it may hold.
@@ -52,6 +54,12 @@ class TableReader {
 
   /// The value of `node` (of `key`) as a finite number (integers accepted).
   [[nodiscard]] double number(const toml::node& node, std::string_view key) const;
+  /// The value of `node` as a number in `range` (integers accepted); outside it (NaN and ±inf
+  /// included) the message states the range with its unit (scene/ranges.hpp).
+  [[nodiscard]] double number_in(const toml::node& node, std::string_view key,
+                                 const core::Range& range) const;
+  /// number_in() of `key` into `value` when the table has it (else `value` stays).
+  void read_in(std::string_view key, const core::Range& range, double& value) const;
   /// The value as an integer (a float is a wrong type, even 6.0).
   [[nodiscard]] long long integer(const toml::node& node, std::string_view key) const;
   /// The value as a string that is one of `choices` (the nearest suggested otherwise).

@@ -10,6 +10,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/range.hpp"
 #include "sweeps/engine/spec.hpp"
 
 namespace slipwalk::sweeps {
@@ -65,6 +66,28 @@ class Reader {
                     ", " + core::format_double(hi) + "], got " + core::format_double(x));
     }
     return x;
+  }
+
+  /// A number, `fallback` if absent; fails unless `range` holds it (the message states the range
+  /// and its unit, core/range.hpp).
+  [[nodiscard]] double number(std::string_view key, double fallback,
+                              const core::Range& range) const {
+    const double x = number(key).value_or(fallback);
+    if (!range.contains(x)) {
+      fail(key, "must be in " + range.describe() + ", got " + core::format_double(x));
+    }
+    return x;
+  }
+
+  /// Fails at `key` when a point's work `amount` (`product`, e.g. "N · trials") passes `limit`:
+  /// every point finishes in bounded time whatever its inputs, and a point that would not is bad
+  /// input found before the sweep starts.
+  void limit_work(std::string_view key, std::string_view product, double amount,
+                  double limit) const {
+    if (!(amount <= limit)) {
+      fail(key, std::string(product) + " = " + core::format_double(amount) + "; at most " +
+                    core::format_double(limit) + " per point (split it into more points)");
+    }
   }
 
   [[nodiscard]] long long integer(std::string_view key, long long fallback, long long lo,

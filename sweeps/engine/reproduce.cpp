@@ -138,6 +138,11 @@ std::optional<core::InputError> ReproduceOptions::validate() const {
     what.append(studies_dir.string()).append("' is not a folder");
     return core::InputError("--studies", what);
   }
+  if (names.empty() && find_studies(studies_dir).empty()) {
+    std::string what = "'";
+    what.append(studies_dir.string()).append("' holds no study (no <folder>/study.toml)");
+    return core::InputError("--studies", what);
+  }
   for (const auto& name : names) {
     const fs::path file = studies_dir / name / "study.toml";
     if (!fs::is_regular_file(file)) {

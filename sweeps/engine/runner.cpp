@@ -17,6 +17,7 @@
 #include "core/atomic_file.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "core/provenance.hpp"
 #include "sweeps/engine/timing.hpp"
 
@@ -121,16 +122,17 @@ struct Finished {
   std::string message;
 };
 
+/// The largest checkpoint --resume reads: a sweep's CSV of kMaxPoints points of a few hundred
+/// bytes each.
+constexpr std::size_t kMaxCheckpointBytes = std::size_t{16} << 30;
+
 /// The checkpoint: the header, `#spec,<fingerprint>`, then per finished point its rows and a
 /// `#done,<id>,<failed>,<message>` line. A point counts only once its #done line is complete, so
 /// a run killed in the middle of a write loses at most the point being written.
 std::map<long long, Finished> read_partial(const std::filesystem::path& path,
                                            const std::string& header, const std::string& print,
                                            long long n_points) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream all;
-  all << in.rdbuf();
-  const std::string text = all.str();
+  const std::string text = core::read_input_file(path, "a sweep checkpoint", kMaxCheckpointBytes);
   std::vector<std::string> lines;
   std::size_t start = 0;
   for (std::size_t nl; (nl = text.find('\n', start)) != std::string::npos; start = nl + 1) {
@@ -214,6 +216,18 @@ PreparedSweep prepare(Spec spec, std::span<const PointKind> kinds) {
   s.points = expand(spec);
   for (const Point& p : s.points) {
     s.kind->check(p);
+  }
+  // The variant not run is checked as well: a bad value is bad input whether or not --quick
+  // overrides it, and a bad [quick] value is found by a full run too.
+  for (const Point& p : expand_other(spec)) {
+    try {
+      s.kind->check(p);
+    } catch (const core::InputError& e) {
+      std::string what = e.what();
+      what.erase(0, std::min(what.size(), e.where().size() + 2));
+      what.append(spec.quick ? " (in the spec without --quick)" : " (in the spec under --quick)");
+      throw core::InputError(e.where(), what);
+    }
   }
   s.spec = std::move(spec);
   return s;
@@ -397,8 +411,13 @@ RunSummary run(const PreparedSweep& sweep, const RunOptions& options) {
       {"provenance", core::build_provenance()},
       {"points", points},
   };
-  core::write_file_atomically(summary.csv, csv);
-  core::write_file_atomically(summary.sidecar, sidecar.dump(1) + "\n");
+  // The CSV is renamed last, after its sidecar: it is never seen without it (a sidecar alone is
+  // no result to any reader, and keep_finished reruns it).
+  core::AtomicFile csv_file(summary.csv);
+  csv_file.stream() << csv;
+  core::AtomicFile sidecar_file(summary.sidecar);
+  sidecar_file.stream() << sidecar.dump(1) << "\n";
+  core::commit_with_sidecar(csv_file, sidecar_file);
   std::error_code ec;
   std::filesystem::remove(summary.partial, ec);
   summary.complete = true;

@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
@@ -311,6 +309,61 @@ void apply_quick(Spec& spec, const toml::node& node, const std::string& path, in
   }
 }
 
+std::size_t blocks_size(const std::vector<Block>& blocks) {
+  std::size_t n = 0;
+  for (const Block& b : blocks) {
+    n += b.size();
+    if (n > kMaxPoints) {
+      return kMaxPoints + 1;
+    }
+  }
+  return n;
+}
+
+/// Every point of `blocks` over `params`, in product order, ids 0, 1, 2, ...
+std::vector<Point> expand_blocks(const NamedValues& params, const std::vector<Block>& blocks,
+                                 const std::string& path) {
+  std::vector<Point> out;
+  out.reserve(blocks_size(blocks));
+  long long id = 0;
+  for (const Block& b : blocks) {
+    NamedValues base = params;
+    for (const auto& [k, v] : b.params) {
+      put(base, k, v);
+    }
+    const std::vector<NamedValues> explicit_points =
+        b.points.empty() ? std::vector<NamedValues>(1) : b.points;
+    for (const NamedValues& p : explicit_points) {
+      NamedValues with_point = base;
+      for (const auto& [k, v] : p) {
+        put(with_point, k, v);
+      }
+      // Mixed radix over the axes, the last axis fastest.
+      std::size_t combinations = 1;
+      for (const Axis& a : b.axes) {
+        combinations *= a.values.size();
+      }
+      std::vector<std::size_t> index(b.axes.size(), 0);
+      for (std::size_t c = 0; c < combinations; ++c) {
+        std::size_t rest = c;
+        for (std::size_t a = b.axes.size(); a-- > 0;) {
+          index[a] = rest % b.axes[a].values.size();
+          rest /= b.axes[a].values.size();
+        }
+        Point point;
+        point.id = id++;
+        point.source = path;
+        point.values = with_point;
+        for (std::size_t a = 0; a < b.axes.size(); ++a) {
+          put(point.values, b.axes[a].key, b.axes[a].values[index[a]]);
+        }
+        out.push_back(std::move(point));
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string Value::repr() const {
@@ -436,16 +489,22 @@ Spec parse_spec(std::string_view text, const std::string& path, bool quick) {
     top_block = 0;
   }
   if (quick_node != nullptr) {
+    // Both variants are kept: the one run, and the other for prepare() to check (a bad [quick]
+    // section is an error in full runs too, and a bad value --quick overrides in quick runs).
+    Spec with_quick = spec;
+    apply_quick(with_quick, *quick_node, path, top_block);
+    Spec& run = quick ? with_quick : spec;
+    const Spec& other = quick ? spec : with_quick;
+    run.other_params = other.params;
+    run.other_blocks = other.blocks;
     if (quick) {
-      apply_quick(spec, *quick_node, path, top_block);
-    } else {
-      Spec probe = spec;  // a bad [quick] section is an error in full runs too
-      apply_quick(probe, *quick_node, path, top_block);
+      spec = std::move(with_quick);
     }
   }
-  if (point_count(spec) > kMaxPoints) {
-    throw InputError(path,
-                     "the spec expands to more than " + std::to_string(kMaxPoints) + " points");
+  if (point_count(spec) > kMaxPoints || blocks_size(spec.other_blocks) > kMaxPoints) {
+    throw InputError(path, "the spec expands to more than " + std::to_string(kMaxPoints) +
+                               " points" +
+                               (point_count(spec) > kMaxPoints ? "" : " without --quick"));
   }
   return spec;
 }
@@ -454,57 +513,17 @@ Spec load_spec(const std::filesystem::path& path, bool quick) {
   return parse_spec(core::read_input_file(path, "a sweep spec"), path.string(), quick);
 }
 
-std::size_t point_count(const Spec& spec) {
-  std::size_t n = 0;
-  for (const Block& b : spec.blocks) {
-    n += b.size();
-    if (n > kMaxPoints) {
-      return kMaxPoints + 1;
-    }
-  }
-  return n;
-}
+std::size_t point_count(const Spec& spec) { return blocks_size(spec.blocks); }
 
 std::vector<Point> expand(const Spec& spec) {
-  std::vector<Point> out;
-  out.reserve(point_count(spec));
-  long long id = 0;
-  for (const Block& b : spec.blocks) {
-    NamedValues base = spec.params;
-    for (const auto& [k, v] : b.params) {
-      put(base, k, v);
-    }
-    const std::vector<NamedValues> explicit_points =
-        b.points.empty() ? std::vector<NamedValues>(1) : b.points;
-    for (const NamedValues& p : explicit_points) {
-      NamedValues with_point = base;
-      for (const auto& [k, v] : p) {
-        put(with_point, k, v);
-      }
-      // Mixed radix over the axes, the last axis fastest.
-      std::size_t combinations = 1;
-      for (const Axis& a : b.axes) {
-        combinations *= a.values.size();
-      }
-      std::vector<std::size_t> index(b.axes.size(), 0);
-      for (std::size_t c = 0; c < combinations; ++c) {
-        std::size_t rest = c;
-        for (std::size_t a = b.axes.size(); a-- > 0;) {
-          index[a] = rest % b.axes[a].values.size();
-          rest /= b.axes[a].values.size();
-        }
-        Point point;
-        point.id = id++;
-        point.source = spec.path;
-        point.values = with_point;
-        for (std::size_t a = 0; a < b.axes.size(); ++a) {
-          put(point.values, b.axes[a].key, b.axes[a].values[index[a]]);
-        }
-        out.push_back(std::move(point));
-      }
-    }
+  return expand_blocks(spec.params, spec.blocks, spec.path);
+}
+
+std::vector<Point> expand_other(const Spec& spec) {
+  if (spec.other_blocks.empty()) {
+    return {};
   }
-  return out;
+  return expand_blocks(spec.other_params, spec.other_blocks, spec.path);
 }
 
 }  // namespace slipwalk::sweeps

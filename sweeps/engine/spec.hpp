@@ -69,6 +69,12 @@ struct Spec {
   nlohmann::json source;  ///< the whole file as JSON (before quick overrides)
   NamedValues params;     ///< [params] (quick.params applied)
   std::vector<Block> blocks;
+  /// The variant of the spec that is not run: with `quick`, the spec without its [quick]
+  /// overrides; without, the spec with them (empty blocks when the spec has no [quick]).
+  /// prepare() checks its points too, so that a bad value is refused before anything runs
+  /// whichever variant is run, including a value that --quick overrides.
+  NamedValues other_params;
+  std::vector<Block> other_blocks;
 };
 
 /// Largest number of points a spec may expand to.
@@ -83,6 +89,9 @@ inline constexpr std::size_t kMaxPoints = 10'000'000;
 [[nodiscard]] std::size_t point_count(const Spec& spec);
 /// Every point in product order, ids 0, 1, 2, ...
 [[nodiscard]] std::vector<Point> expand(const Spec& spec);
+/// The points of the variant not run (Spec::other_blocks), in product order; none without
+/// [quick].
+[[nodiscard]] std::vector<Point> expand_other(const Spec& spec);
 
 /// Axis helpers (exact endpoints): n values from a to b, evenly / geometrically spaced.
 [[nodiscard]] std::vector<double> linspace(double a, double b, long long n);

@@ -5,14 +5,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
 #include "scene/friction_laws.hpp"
+#include "scene/ranges.hpp"
+#include "scene/run_writer.hpp"
 #include "sweeps/engine/toml_util.hpp"
 
 namespace slipwalk::sweeps {
@@ -189,7 +189,10 @@ SceneJob parse_scene_entry(const toml::table& t, const std::filesystem::path& di
   check_plain_name(job.name, where["name"]);
   const std::filesystem::path file = dir / text(*nodes["file"], "file", path);
   if (!std::filesystem::is_regular_file(file)) {
-    throw InputError(where["file"], "file: no scene file " + file.string());
+    throw InputError(where["file"],
+                     "file: " + file.string() +
+                         (std::filesystem::is_directory(file) ? " is a folder, not a scene file"
+                                                              : ": no such scene file"));
   }
   job.scene = scene::read_scene(file);  // errors name the scene file's line and column
 
@@ -237,30 +240,39 @@ SceneJob parse_scene_entry(const toml::table& t, const std::filesystem::path& di
       sc.filter = scene::FilterEffect{};
     }
   }
+  // The overrides take the scene format's ranges (scene/ranges.hpp).
+  const auto in_range = [&](const char* key, const core::Range& range) {
+    const toml::node& node = *nodes[key];
+    const auto parsed = node.value<double>();
+    if (!parsed || !(node.is_integer() || node.is_floating_point())) {
+      throw InputError(where[key], std::string(key) + ": expected a number");
+    }
+    const double value = *parsed;
+    if (!range.contains(value)) {
+      throw InputError(where[key], std::string(key) + ": must be in " + range.describe() +
+                                       ", got " + core::format_double(value));
+    }
+    return value;
+  };
   if (nodes.count("gamma")) {
-    const double gamma = number(*nodes["gamma"], "gamma", path);
-    if (!(gamma >= 0.0 && gamma < 1.0)) {
-      throw InputError(where["gamma"], "gamma: must be in [0, 1)");
-    }
-    sc.filter = scene::FilterEffect{gamma};
-  }
-  for (const char* key : {"duration", "dt", "quick_duration"}) {
-    if (nodes.count(key) && !(number(*nodes[key], key, path) > 0.0)) {
-      throw InputError(where[key], std::string(key).append(": must be > 0 s"));
-    }
+    sc.filter = scene::FilterEffect{in_range("gamma", scene::ranges::kFilterGamma)};
   }
   if (nodes.count("duration")) {
-    sc.duration = number(*nodes["duration"], "duration", path);
+    sc.duration = in_range("duration", scene::ranges::kDuration);
   }
   if (nodes.count("dt")) {
-    sc.dt = number(*nodes["dt"], "dt", path);
+    sc.dt = in_range("dt", scene::ranges::kStep);
   }
   if (nodes.count("duration") || nodes.count("dt")) {
-    const std::string key = nodes.count("duration") ? "duration" : "dt";
+    const std::string key = nodes.count("dt") ? "dt" : "duration";
     sc.steps = whole_steps(sc.duration, sc.dt, where[key], key);
+    // The CSV's size is bounded as in the scene file, now at the override.
+    sc.run_origin = where[key];
+    sc.run_key = key;
+    scene::check_run_size(sc, scene::make_walker(sc.gait));
   }
   if (nodes.count("quick_duration")) {
-    job.quick_duration = number(*nodes["quick_duration"], "quick_duration", path);
+    job.quick_duration = in_range("quick_duration", scene::ranges::kDuration);
     (void)whole_steps(*job.quick_duration, sc.dt, where["quick_duration"], "quick_duration");
   }
   return job;
@@ -295,7 +307,10 @@ Study load_study(const std::filesystem::path& dir) {
       for (const auto& s : *a) {
         const std::filesystem::path spec = dir / text(s, "sweeps", path);
         if (!std::filesystem::is_regular_file(spec)) {
-          throw InputError(origin_of(s.source(), path), "sweeps: no spec file " + spec.string());
+          throw InputError(origin_of(s.source(), path), "sweeps: " + spec.string() +
+                                                            (std::filesystem::is_directory(spec)
+                                                                 ? " is a folder, not a spec file"
+                                                                 : ": no such spec file"));
         }
         study.sweeps.push_back(spec);
       }

@@ -87,21 +87,26 @@ CostInputs read_cost(const Point& point) {
     if (!r.has("eps")) {
       r.fail("eps", "required with method = \"epsilon\" (eq. 3.14's ε, m/s)");
     }
-    in.eps = r.number("eps", 1.0, 0.0, 1e12);
-    in.tol = r.number("tol", friction::EpsilonOptions{}.tol, 0.0, 1.0);
+    in.eps = r.number("eps", 1.0, core::closed(1e-12, 1e12, "m/s"));
+    in.tol = r.number("tol", friction::EpsilonOptions{}.tol, core::closed(1e-15, 1.0));
   } else if (r.has("eps")) {
     r.fail("eps", "only used with method = \"epsilon\"");
   }
   if (in.method == Method::kCoulomb) {
-    in.tol = r.number("tol", friction::CoulombOptions{}.tol, 0.0, 1.0);
+    in.tol = r.number("tol", friction::CoulombOptions{}.tol, core::closed(1e-15, 1.0));
   } else if (in.method != Method::kEpsilon && r.has("tol")) {
     r.fail("tol", "only used with method = \"epsilon\" or \"coulomb\"");
   }
   in.frames = r.integer("frames", 200, 1, 1'000'000);
   in.seed = r.integer("seed", 0, 0, 1LL << 53);
   in.repeats = r.integer("repeats", 11, 1, 100'000);
-  in.speed = r.number("speed", 0.1, 0.0, 1e6);
+  in.speed = r.number("speed", 0.1, core::closed(1e-12, 1e6, "m/s"));
   in.spread = r.number("spread", 0.5, 0.0, 1e6, true);
+  // frames × repeats solves of N legs, each up to about N² per iteration: 1e9 is a minute.
+  r.limit_work("repeats", "N² · frames · repeats",
+               static_cast<double>(in.n) * static_cast<double>(in.n) *
+                   static_cast<double>(in.frames) * static_cast<double>(in.repeats),
+               1e9);
   return in;
 }
 

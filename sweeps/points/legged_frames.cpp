@@ -107,8 +107,13 @@ MapInputs read_map(const Point& point) {
     }
   }
   in.eps_n = r.integer("eps_n", 0, 0, 1000);
-  in.eps_min = r.number("eps_min", 1e-4, 0.0, 1e12);
-  in.eps_max = r.number("eps_max", 1e2, 0.0, 1e12);
+  in.eps_min = r.number("eps_min", 1e-4, core::closed(1e-12, 1e12, "m/s"));
+  in.eps_max = r.number("eps_max", 1e2, core::closed(1e-12, 1e12, "m/s"));
+  // n² grid points per law, each a sum over the legs.
+  r.limit_work("n", "n² · legs",
+               static_cast<double>(in.n) * static_cast<double>(in.n) *
+                   static_cast<double>(in.robot->robot.legs()),
+               1e9);
   if (!(in.eps_max > in.eps_min)) {
     r.fail("eps_max", "must exceed eps_min");
   }

@@ -89,6 +89,12 @@ OneDInputs read_1d(const Point& point) {
                  *speeds + "'");
     }
     in.speeds = *list;
+    // The same bound as offset and scale: sums of N speeds stay finite and normal.
+    for (const double v : in.speeds) {
+      if (!(std::abs(v) <= 1e12)) {
+        r.fail("speeds", "every speed must be in [-1e12, 1e12] m/s, got " + core::format_double(v));
+      }
+    }
     for (auto key : {"seed", "trials", "distribution", "scale", "offset"}) {
       if (r.has(key)) {
         r.fail(key, "not used with explicit speeds");
@@ -107,8 +113,13 @@ OneDInputs read_1d(const Point& point) {
   in.seed = r.integer("seed", 0, 0, 1LL << 53);
   in.trials = r.integer("trials", 1, 1, 1000000);
   in.distribution = r.choice("distribution", {"uniform", "normal", "exponential"});
-  in.scale = r.number("scale", 1.0, 0.0, 1e12);
+  // Scales, speeds and lengths between 1e-12 and 1e12 keep every product and sum of the laws
+  // (eqs. 3.9-3.14) finite and normal.
+  in.scale = r.number("scale", 1.0, core::closed(1e-12, 1e12, "m/s"));
   in.offset = r.number("offset", 0.0, -1e12, 1e12, true);
+  // A trial sorts and sums N speeds: 1e8 of them is seconds.
+  r.limit_work("trials", "N · trials", static_cast<double>(in.N) * static_cast<double>(in.trials),
+               1e8);
   return in;
 }
 
@@ -305,8 +316,12 @@ CompareInputs read_compare(const Point& point) {
   in.N = r.integer("N", 6, 3, 1000);
   in.seed = r.integer("seed", 0, 0, 1LL << 53);
   in.trials = r.integer("trials", 1, 1, 1000000);
-  in.spread = r.number("spread", 0.2, 0.0, 1e6, true);
-  in.radius = r.number("radius", 0.3, 0.0, 1e6);
+  in.spread = r.number("spread", 0.2, core::closed(0.0, 1e6, "m/s"));
+  in.radius = r.number("radius", 0.3, core::closed(1e-6, 1e6, "m"));
+  // A trial is one Coulomb solve of N legs (an interior-point method, about N² per iteration).
+  r.limit_work(
+      "trials", "N² · trials",
+      static_cast<double>(in.N) * static_cast<double>(in.N) * static_cast<double>(in.trials), 1e9);
   return in;
 }
 
@@ -422,11 +437,11 @@ EpsInputs read_eps(const Point& point) {
     if (!r.has("epsilon")) {
       r.fail("epsilon", "required with model = \"epsilon\" (eq. 3.14's ε, m/s)");
     }
-    in.epsilon = r.number("epsilon", 1.0, 0.0, 1e12);
+    in.epsilon = r.number("epsilon", 1.0, core::closed(1e-12, 1e12, "m/s"));
   } else if (r.has("epsilon")) {
     r.fail("epsilon", "only used with model = \"epsilon\"");
   }
-  in.speed = r.number("speed", 1.0, 0.0, 1e12);
+  in.speed = r.number("speed", 1.0, core::closed(1e-12, 1e12, "m/s"));
   in.shape = r.choice("shape", {"grid", "polar"});
   in.range = r.number("range", 0.3, 0.0, 0.99);
   in.n = r.integer("n", in.shape == "grid" ? 121 : 41, 2, 4001);
@@ -434,6 +449,10 @@ EpsInputs read_eps(const Point& point) {
     r.fail("angles", "only used with shape = \"polar\"");
   }
   in.angles = r.integer("angles", 360, 4, 100000);
+  if (in.shape == "polar") {
+    r.limit_work("angles", "n · angles", static_cast<double>(in.n) * static_cast<double>(in.angles),
+                 1e7);
+  }
   return in;
 }
 

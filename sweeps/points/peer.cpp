@@ -141,8 +141,15 @@ ScalingInputs read_scaling(const Point& point) {
   in.batches = r.integer("batches", 3, 1, 1000);
   in.min_batch_s = 1e-6 * r.number("min_batch_us", 20.0, 0.0, 1e6, true);
   in.warmstart = r.choice("warmstart", {"solution", "cold"});
-  in.speed = r.number("speed", 0.1, 0.0, 1e6);
+  in.speed = r.number("speed", 0.1, core::closed(1e-12, 1e6, "m/s"));
   in.spread = r.number("spread", 0.5, 0.0, 1e6, true);
+  // Each batch times every configuration at least min_batch_us, for both simulators.
+  r.limit_work(
+      "configs", "N · configs · batches",
+      static_cast<double>(in.n) * static_cast<double>(in.configs) * static_cast<double>(in.batches),
+      1e9);
+  r.limit_work("batches", "batches · min_batch_us (s)",
+               static_cast<double>(in.batches) * in.min_batch_s, 600.0);
   return in;
 }
 
@@ -300,9 +307,14 @@ ParallelInputs read_parallel(const Point& point) {
   in.max_threads = static_cast<int>(r.integer("max_threads", 4, 1, 64));
   in.blocks = static_cast<int>(r.integer("blocks", 64, 1, 1'000'000));
   in.seed = r.integer("seed", 0, 0, 1LL << 53);
-  in.dt = r.number("dt", 0.01, 0.0, 1e3);
-  in.speed = r.number("speed", 0.1, 0.0, 1e6);
+  in.dt = r.number("dt", 0.01, core::closed(1e-9, 1e3, "s"));
+  in.speed = r.number("speed", 0.1, core::closed(1e-12, 1e6, "m/s"));
   in.spread = r.number("spread", 0.5, 0.0, 1e6, true);
+  // Every thread count up to max_threads runs every trajectory's steps.
+  r.limit_work("steps", "trajectories · steps · max_threads",
+               static_cast<double>(in.trajectories) * static_cast<double>(in.steps) *
+                   static_cast<double>(in.max_threads),
+               1e9);
   return in;
 }
 

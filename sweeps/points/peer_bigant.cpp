@@ -79,26 +79,30 @@ Inputs read(const Point& point) {
   const Reader r(point, "peer_bigant", kKeys);
   Inputs in;
   in.gait = r.choice("gait", {"tripod", "metachronal"});
-  in.frequency = r.number("frequency", 0.1, 0.0, 10.0);
+  in.frequency = r.number("frequency", 0.1, core::closed(1e-6, 10.0, "Hz"));
   in.duration = r.number("duration", 40.0, 0.0, 3600.0);
   in.settle = r.number("settle", 1.0, 0.0, 60.0, true);
   in.sample = r.number("sample", 0.1, 0.0, 60.0);
-  in.dt = r.number("dt", 0.01, 0.0, 1.0);
+  in.dt = r.number("dt", 0.01, core::closed(1e-6, 1.0, "s"));
   in.mu = r.number("mu", 1.0, 0.0, 100.0, true);
-  in.timestep = r.number("timestep", 0.002, 0.0, 0.05);
+  in.timestep = r.number("timestep", 0.002, core::closed(1e-6, 0.05, "s"));
   in.kp_xy = r.number("kp_xy", 100.0, 0.0, 1e9);
   in.kp_z = r.number("kp_z", 1000.0, 0.0, 1e9);
   in.damping = r.number("damping", 10.0, 0.0, 1e9, true);
   in.solref_timeconst = r.number("solref_timeconst", 0.02, 0.0, 10.0);
   in.solref_dampratio = r.number("solref_dampratio", 1.0, 0.0, 100.0);
   in.iterations = static_cast<int>(r.integer("iterations", 100, 1, 100000));
-  in.K = r.number("K", in.kp_z, 0.0, 1e9);
+  in.K = r.number("K", in.kp_z, core::closed(1e-3, 1e9, "N/m"));
   in.lead = r.choice("lead", {"off", "on"}) == "on";
   in.ours = r.choice("ours", {"both", "none"}) == "both";
   in.label = r.text("label").value_or("base");
   if (in.sample < in.dt || in.sample < in.timestep) {
     r.fail("sample", "must be at least dt and timestep");
   }
+  // Our model takes (settle + duration) / dt steps, MuJoCo as many of its timestep.
+  r.limit_work("dt", "duration / dt", in.duration / in.dt, 1e7);
+  r.limit_work("timestep", "(settle + duration) / timestep",
+               (in.settle + in.duration) / in.timestep, 1e8);
   return in;
 }
 
@@ -281,10 +285,11 @@ void run_ours(const Point& point, const Inputs& in, const robots::Walker& w, con
                               out.rows.push_back(base_row(point, in, source, s.t, s.pose, s.frame.z,
                                                           down, s.frame.Fz.sum()));
                             });
-  if (!summary.message.empty()) {
+  const std::string& message = summary.non_finite.empty() ? summary.message : summary.non_finite;
+  if (!message.empty()) {
     for (BigAntRow& r : out.rows) {
       if (r.source == source) {
-        r.message = summary.message;
+        r.message = message;
       }
     }
   }

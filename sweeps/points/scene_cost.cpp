@@ -95,6 +95,9 @@ Inputs read_inputs(const Point& point) {
   in.steps = r.integer("steps", in.steps, 1, 10'000'000);
   in.repeats = r.integer("repeats", in.repeats, 1, 100'000);
   in.frequency = r.number("frequency", in.frequency, 1e-6, 100.0);
+  // Every repeat runs every case (nine) for steps + 1 frames.
+  r.limit_work("repeats", "steps · repeats",
+               static_cast<double>(in.steps) * static_cast<double>(in.repeats), 1e8);
   return in;
 }
 

@@ -46,10 +46,14 @@ struct Probe {
 Walk read_walk(const Reader& r) {
   Walk w;
   w.law = r.choice("law", {"viscous", "coulomb"});
-  w.frequency = r.number("frequency", w.frequency, 0.0, 100.0);
+  // The walk is a scene (scene/ranges.hpp): its frequency and steps must be a scene's.
+  w.frequency = r.number("frequency", w.frequency, core::closed(1e-6, 100.0, "Hz"));
   w.cycles = r.integer("cycles", w.cycles, 2, 1000);
   w.per_cycle = r.integer("steps_per_cycle", w.per_cycle, 10, 1'000'000);
   w.com_height = r.number("com_height", w.com_height, 0.0, 10.0, true);
+  r.limit_work("steps_per_cycle", "cycles · steps_per_cycle",
+               static_cast<double>(w.cycles) * static_cast<double>(w.per_cycle),
+               static_cast<double>(scene::kMaxSteps));
   return w;
 }
 
@@ -80,6 +84,9 @@ Probe walk_up(const Walk& w, double angle_deg) {
   p.not_converged = summary.not_converged - p.sliding;
   p.unsupported = summary.unsupported;
   p.progress = (x_end - x_after_first) / static_cast<double>(w.cycles - 1);
+  if (summary.non_finite_step >= 0) {
+    p.progress = std::numeric_limits<double>::quiet_NaN();  // no result: the walk stopped
+  }
   return p;
 }
 
@@ -155,7 +162,8 @@ StallInputs read_stall(const Point& point) {
   in.walk = read_walk(r);
   in.lo_deg = r.number("lo_deg", in.lo_deg, 0.0, 89.0, true);
   in.hi_deg = r.number("hi_deg", in.hi_deg, 0.0, 89.0, true);
-  in.tol_deg = r.number("tol_deg", in.tol_deg, 0.0, 45.0);
+  // The bisection halves hi - lo until it is below tol_deg: at most log2(89 / 1e-6) ≈ 27 probes.
+  in.tol_deg = r.number("tol_deg", in.tol_deg, core::closed(1e-6, 45.0, "deg"));
   if (!(in.lo_deg < in.hi_deg)) {
     r.fail("hi_deg", "must be above lo_deg");
   }

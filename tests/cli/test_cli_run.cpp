@@ -196,7 +196,7 @@ TEST(CliRun, BadScenesExitTwoNamingTheirPlaceAndWriteNothing) {
   const std::vector<Case> cases = {
       {replace(kTripod, "frequency", "frequncy"), "scene.toml:6:1", "did you mean 'frequency'?"},
       {replace(kTripod, "0.5", "\"fast\""), "scene.toml:6:13", "expected a number, got a string"},
-      {replace(kTripod, "0.5", "-2"), "scene.toml:6:13", "must be > 0 Hz"},
+      {replace(kTripod, "0.5", "-2"), "scene.toml:6:13", "must be in [1e-06, 1000] Hz"},
       {replace(kTripod, "duration = 2.0\n", ""), "scene.toml:8:1",
        "missing required key 'duration'"},
       {replace(kTripod, "law = \"viscous\"", "law = \"viscous\"\ntol = 1e-8"), "scene.toml:14:7",
@@ -229,6 +229,85 @@ TEST(CliRun, BadUsageExitsTwo) {
       run_slipwalk({"run", (dir / "scene.toml").string(), "--out", (dir / "o.json").string()});
   EXPECT_EQ(json_out.exit_code, 2);
   EXPECT_EQ(files_under(dir.path()), std::vector<std::string>{"scene.toml"});
+}
+
+TEST(CliRun, ARunTooLargeExitsTwoAtItsStepWithTheEstimateAndWritesNothing) {
+  ScratchDir dir;
+  // 5e6 rows of BigANT's 52 columns: about 6.5 GB.
+  write_text(dir / "scene.toml", replace(replace(kTripod, "duration = 2.0", "duration = 5e4"),
+                                         "dt = 0.05", "dt = 0.01"));
+  const auto r =
+      run_slipwalk({"run", (dir / "scene.toml").string(), "--out", (dir / "o.csv").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find((dir / "scene.toml").string() + ":10:6: run.dt: the run would write "
+                                                       "5000001 rows"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("GB; at most 4 GB"), std::string::npos) << r.err;
+  EXPECT_EQ(files_under(dir.path()), std::vector<std::string>{"scene.toml"});
+}
+
+TEST(CliRun, EveryInputThatIsAFolderExitsTwoNamingItAndWritesNothing) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir / "folder.toml");
+  std::filesystem::create_directories(dir / "B.csv");
+  // The scene itself, and the residual file it names.
+  const auto scene =
+      run_slipwalk({"run", (dir / "folder.toml").string(), "--out", (dir / "o.csv").string()});
+  EXPECT_EQ(scene.exit_code, 2) << scene.err;
+  EXPECT_NE(scene.err.find((dir / "folder.toml").string()), std::string::npos) << scene.err;
+  write_text(dir / "scene.toml", kTripod + std::string("[residual]\nfile = \"B.csv\"\n"));
+  const auto residual =
+      run_slipwalk({"run", (dir / "scene.toml").string(), "--out", (dir / "o.csv").string()});
+  EXPECT_EQ(residual.exit_code, 2) << residual.err;
+  EXPECT_NE(residual.err.find((dir / "scene.toml").string() + ":15:8"), std::string::npos)
+      << residual.err;
+  EXPECT_NE(residual.err.find((dir / "B.csv").string()), std::string::npos) << residual.err;
+  // A sweep spec, and a robot file a spec names.
+  const auto spec =
+      run_slipwalk({"sweep", (dir / "folder.toml").string(), "--data", (dir / "data").string()});
+  EXPECT_EQ(spec.exit_code, 2) << spec.err;
+  EXPECT_NE(spec.err.find((dir / "folder.toml").string()), std::string::npos) << spec.err;
+  write_text(dir / "spec.toml",
+             "study = \"t\"\nname = \"m\"\nkind = \"legged_force_map\"\n[params]\n"
+             "robot = \"B.csv\"\n");
+  const auto robot =
+      run_slipwalk({"sweep", (dir / "spec.toml").string(), "--data", (dir / "data").string()});
+  EXPECT_EQ(robot.exit_code, 2) << robot.err;
+  EXPECT_NE(robot.err.find((dir / "spec.toml").string() + ":5:9"), std::string::npos) << robot.err;
+  EXPECT_NE(robot.err.find((dir / "B.csv").string()), std::string::npos) << robot.err;
+  // Studies: a folder holding none, a study whose study.toml is a folder, a [[scene]] file and
+  // a sweep spec that are folders.
+  std::filesystem::create_directories(dir / "studies" / "empty");
+  const auto none = run_slipwalk({"reproduce", "--no-report", "--studies",
+                                  (dir / "studies").string(), "--data", (dir / "data").string()});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+  EXPECT_NE(none.err.find("--studies: '" + (dir / "studies").string() + "' holds no study"),
+            std::string::npos)
+      << none.err;
+  std::filesystem::create_directories(dir / "studies" / "odd" / "study.toml");
+  const auto odd =
+      run_slipwalk({"reproduce", "--no-report", "--studies", (dir / "studies").string(), "--data",
+                    (dir / "data").string(), "odd"});
+  EXPECT_EQ(odd.exit_code, 2) << odd.err;
+  EXPECT_NE(odd.err.find((dir / "studies" / "odd" / "study.toml").string()), std::string::npos)
+      << odd.err;
+  std::filesystem::create_directories(dir / "studies" / "s" / "sub");
+  for (const std::string& entry : {std::string("[[scene]]\nname = \"x\"\nfile = \"sub\"\n"),
+                                   std::string("sweeps = [\"sub\"]\n")}) {
+    write_text(dir / "studies" / "s" / "study.toml", "title = \"t\"\n" + entry);
+    const auto r =
+        run_slipwalk({"reproduce", "--no-report", "--studies", (dir / "studies").string(), "--data",
+                      (dir / "data").string(), "s"});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find((dir / "studies" / "s" / "study.toml").string() + ":"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find((dir / "studies" / "s" / "sub").string() + " is a folder"),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "data"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "o.csv"));
 }
 
 }  // namespace

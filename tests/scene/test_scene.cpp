@@ -179,21 +179,22 @@ TEST(Scene, WrongTypes) {
   expect_error("filter = 1\n" + replace(kGood, "[filter]\ngamma = 0.3\n", ""), "1:1",
                "expected a table [filter], got an integer");
   expect_error(replace(kGood, "duration = 10.0", "duration = nan"), "10:12",
-               "run.duration: must be finite");
+               "run.duration: must be in [1e-09, 1000000000] s, got nan");
 }
 
 TEST(Scene, ValuesOutOfRange) {
   expect_error(replace(kGood, "frequency = 0.2", "frequency = -1"), "6:13",
-               "gait.frequency: must be > 0 Hz, got -1");
+               "gait.frequency: must be in [1e-06, 1000] Hz, got -1");
   expect_error(replace(kGood, "steer = -0.5", "steer = 1.5"), "7:9",
                "gait.steer: must be in [-1, 1], got 1.5");
   expect_error(replace(kGood, "duration = 10.0", "duration = 0"), "10:12",
-               "run.duration: must be > 0 s");
+               "run.duration: must be in [1e-09, 1000000000] s");
   expect_error(replace(kGood, "dt = 0.01", "dt = 0.3"), "11:6",
                "the duration must be a whole number of steps, got duration / dt = 33.3");
   expect_error(replace(kGood, "dt = 0.01", "dt = 1e-9"), "11:6", "at most 10000000");
   expect_error(replace(kGood, "dt = 0.01", "steps = 0"), "11:9", "run.steps: must be from 1");
-  expect_error(replace(kGood, "tol = 1e-9", "tol = 0"), "15:7", "friction.tol: must be > 0");
+  expect_error(replace(kGood, "tol = 1e-9", "tol = 0"), "15:7",
+               "friction.tol: must be in [1e-15, 1], got 0");
   expect_error(replace(kGood, "gamma = 0.3", "gamma = 1"), "18:9",
                "filter.gamma: must be in [0, 1), got 1");
   expect_error(R"([robot]

@@ -413,7 +413,8 @@ TEST(SceneEffects, NoiseErrors) {
     return "s.toml:" + std::to_string(line_of(text, needle)) + ":" + std::to_string(col);
   };
   const std::string negative = scene_text(kViscous, noise("sigma = -0.1"));
-  expect_error(negative, at(negative, "sigma = ", 9), "noise.sigma: must be >= 0 m, got -0.1");
+  expect_error(negative, at(negative, "sigma = ", 9),
+               "noise.sigma: must be in [0, 1000] m, got -0.1");
   const std::string missing = scene_text(kViscous, noise("seed = 1"));
   expect_error(missing, at(missing, "[noise]", 1), "missing required key 'sigma' in [noise]");
   const std::string seed_type = scene_text(kViscous, noise("sigma = 0.1\nseed = 1.5"));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "events/exact_backend.hpp"
 #include "inchworm/simulate.hpp"
@@ -245,6 +246,67 @@ max_strokes = [8, 100000]
   const auto j = nlohmann::json::parse(read_text(s.sidecar));
   EXPECT_EQ(j.at("failed_point_count"), 1);
   EXPECT_EQ(j.at("failed_points")[0].at("id"), 0);
+}
+
+/// A kind whose run throws (a bug in a kind, or a limit reached), for the runner's failure path.
+PointKind throwing_kind() {
+  struct Row {
+    long long id = 0;
+    static std::vector<Column<Row>> columns() { return {value("id", &Row::id)}; }
+  };
+  return make_point_kind<Row>(
+      "throws", "a test kind whose every point throws", Timed::kNo, [](const Point&) {},
+      [](const Point&) -> Rows<Row> { throw core::ComputationError("the kind gave up"); });
+}
+
+TEST(Runner, ARunThatFinishesNoPointLeavesNoFolderBehind) {
+  const ScratchDir d;
+  const std::vector<PointKind> kinds = {throwing_kind()};
+  const PreparedSweep sweep = sweeps::prepare(
+      parse_spec("study = \"new_study\"\nname = \"x\"\nkind = \"throws\"\n[axes]\nk = [1, 2, 3]\n",
+                 "x.toml"),
+      kinds);
+  try {
+    (void)run(sweep, options(d / "data", 2));
+    ADD_FAILURE() << "a throwing point did not stop the sweep";
+  } catch (const core::ComputationError& e) {
+    EXPECT_NE(std::string(e.what()).find("the kind gave up"), std::string::npos) << e.what();
+  }
+  // Neither the checkpoint nor the study folder the run created is left.
+  EXPECT_FALSE(std::filesystem::exists(d / "data" / "new_study"));
+  // A study folder that existed before the run stays.
+  std::filesystem::create_directories(d / "data" / "new_study");
+  EXPECT_THROW((void)run(sweep, options(d / "data", 1)), core::ComputationError);
+  EXPECT_TRUE(std::filesystem::is_directory(d / "data" / "new_study"));
+  EXPECT_TRUE(files_under(d / "data").empty());
+}
+
+TEST(Runner, TheCsvIsRenamedAfterItsSidecar) {
+  // An earlier result is replaced as a pair; when the CSV cannot be renamed (its name is taken
+  // by a folder) the new sidecar stands alone, which no reader takes for a result, and no CSV
+  // of another run is left beside it.
+  const ScratchDir d;
+  write_text(d / "r.csv", "old\n");
+  write_text(d / "r.json", "{\"old\": true}\n");
+  {
+    core::AtomicFile csv(d / "r.csv");
+    csv.stream() << "new\n";
+    core::AtomicFile side(d / "r.json");
+    side.stream() << "{}\n";
+    core::commit_with_sidecar(csv, side);
+  }
+  EXPECT_EQ(read_text(d / "r.csv"), "new\n");
+  EXPECT_EQ(read_text(d / "r.json"), "{}\n");
+  {
+    core::AtomicFile csv(d / "q.csv");
+    csv.stream() << "new\n";
+    core::AtomicFile side(d / "q.json");
+    side.stream() << "{}\n";
+    std::filesystem::create_directories(d / "q.csv" / "taken");
+    EXPECT_THROW(core::commit_with_sidecar(csv, side), core::ComputationError);
+  }
+  EXPECT_TRUE(std::filesystem::is_regular_file(d / "q.json"));
+  EXPECT_FALSE(std::filesystem::is_regular_file(d / "q.csv"));
 }
 
 TEST(Runner, ProgressLines) {

@@ -144,6 +144,12 @@ TEST(StudyScenes, BadEntriesNameFileLineColumn) {
            {"duration = 0.305\n", "study.toml:5:12", "whole number"},
            {"duration = -1.0\n", "study.toml:5:12", "duration"},
            {"quick_duration = 0.015\n", "study.toml:5:18", "quick_duration"},
+           {"gamma = nan\n", "study.toml:5:9", "gamma: must be in [0, 1)"},
+           {"dt = 1e-320\n", "study.toml:5:6", "dt: must be in [1e-09, 1000] s"},
+           {"duration = 1e308\n", "study.toml:5:12", "duration: must be in [1e-09, 1000000000] s"},
+           // The override's run would write 13 GB: refused at the override, with the estimate.
+           {"duration = 1e4\ndt = 1e-3\n", "study.toml:6:6",
+            "dt: the run would write 10000001 rows"},
        }) {
     write_text(d / "study.toml", head + c.body);
     try {
