@@ -101,6 +101,8 @@ void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Ps
       }
     }
   }
+  // fx + fy covers every force written, scale every slip speed (sums: no pass over the feet).
+  detail::flag_non_finite(frame, fx + fy + mz + scale);
 }
 
 template <bool kLoaded>
