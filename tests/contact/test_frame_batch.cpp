@@ -21,7 +21,7 @@ std::string batch(int legs, int rows, const std::string& eol, std::mt19937& rng)
   std::string text;
   const auto columns = batch_input_columns(legs);
   for (std::size_t c = 0; c < columns.size(); ++c) {
-    text += (c ? "," : "") + columns[c];
+    text.append(c ? "," : "").append(columns[c]);
   }
   text += eol;
   for (int r = 0; r < rows; ++r) {
@@ -31,7 +31,7 @@ std::string batch(int legs, int rows, const std::string& eol, std::mt19937& rng)
       const double q[6] = {0.3 * std::cos(a), 0.3 * std::sin(a), -0.1 + 0.02 * u(rng),
                            0.1 * u(rng),      0.1 * u(rng),      0.0};
       for (const double x : q) {
-        text += "," + core::format_double(x);
+        text.append(",").append(core::format_double(x));
       }
     }
     text += eol;
@@ -52,7 +52,8 @@ TEST(FrameBatch, CrlfAndByteOrderMarkReadExactlyAsLf) {
     std::mt19937 c = rng;
     const std::string lf = batch(legs, rows, "\n", a);
     const std::string crlf = batch(legs, rows, "\r\n", b);
-    std::string bom = "\xEF\xBB\xBF" + batch(legs, rows, "\r\n", c);
+    std::string bom = "\xEF\xBB\xBF";
+    bom.append(batch(legs, rows, "\r\n", c));
     bom.pop_back();  // a last line ended by '\r' alone
     rng.discard(1000);
     const Robot robot = uniform_robot(legs, 100.0, 0.7, 9.81);
@@ -101,7 +102,9 @@ TEST(FrameBatch, CellsOutsideTheRangesAreRefusedAtRowAndColumn) {
            {"0,0,0,-1,-2e3,0,0", "f.csv:2:10: must be in ", limits::kVelocity.describe()},
            {"0,0,0,-1,0,0,0\r", "f.csv:2:14: expected a finite number", ""},  // "\r\r\n"
        }) {
-    const std::string what = error_of(header + c.row + "\r\n", 1);
+    std::string text = header;
+    text.append(c.row).append("\r\n");
+    const std::string what = error_of(text, 1);
     EXPECT_EQ(what.rfind(c.start, 0), 0U) << what;
     EXPECT_NE(what.find(c.range), std::string::npos) << what;
   }

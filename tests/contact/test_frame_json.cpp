@@ -40,7 +40,7 @@ TEST(FrameJson, ReadsTheFormatWithDefaults) {
 TEST(FrameJson, MalformedJsonNamesLineAndColumn) {
   EXPECT_EQ(where_of("{\"q\": [[0,0,-1]],\n \"qdot\": [[0,0,0]] oops}"), "f.json:2:20");
   EXPECT_EQ(where_of("{\"q\": [[NaN, 0, -1]], \"qdot\": [[0,0,0]]}"), "f.json:1:9");
-  EXPECT_EQ(where_of("[1, 2]"), "f.json");
+  EXPECT_EQ(where_of("[1, 2]"), "f.json:1:1");
 }
 
 std::string what_of(const std::string& text) {
