@@ -90,26 +90,35 @@ CoulombScratch::CoulombScratch(int legs)
       weight(FootRow::Zero(padded_feet(legs))),
       inv_weight2(FootRow::Zero(padded_feet(legs))) {}
 
+namespace {
+
+// The cold path of check_frame: names the first value out of its range.
+[[gnu::noinline, gnu::cold]] void name_out_of_range(const Frame& frame) {
+  for (int j = 0; j < frame.legs(); ++j) {
+    for (int i = 0; i < 3; ++i) {
+      core::require_in(at("q", j, i), frame.q(i, j), limits::kPosition);
+      core::require_in(at("qdot", j, i), frame.qdot(i, j), limits::kVelocity);
+    }
+  }
+  core::require_in("theta", frame.theta, limits::kYaw);
+}
+
+}  // namespace
+
 void check_frame(const Robot& robot, const Frame& frame) {
   const int n = robot.legs();
   if (frame.q.cols() != n || frame.qdot.cols() != n) {
     throw core::InputError("q", "has " + std::to_string(frame.q.cols()) + " feet, the robot " +
                                     std::to_string(n) + " legs");
   }
-  // One vectorized test per matrix for the usual case (NaN fails every comparison); the loop
-  // only to name the culprit.
-  const auto inside = [](const Eigen::Matrix3Xd& m, const core::Range& r) {
-    return (m.array().abs() <= r.hi).all();
-  };
-  if (!inside(frame.q, limits::kPosition) || !inside(frame.qdot, limits::kVelocity)) {
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < 3; ++i) {
-        core::require_in(at("q", j, i), frame.q(i, j), limits::kPosition);
-        core::require_in(at("qdot", j, i), frame.qdot(i, j), limits::kVelocity);
-      }
-    }
+  // One vectorized test per matrix (the ranges are symmetric; NaN fails every comparison), and
+  // a loop only to name the culprit.
+  const bool inside = (frame.q.array().abs() <= limits::kPosition.hi).all() &&
+                      (frame.qdot.array().abs() <= limits::kVelocity.hi).all() &&
+                      limits::kYaw.contains(frame.theta);
+  if (!inside) [[unlikely]] {
+    name_out_of_range(frame);
   }
-  core::require_in("theta", frame.theta, limits::kYaw);
 }
 
 }  // namespace slipwalk::contact

@@ -407,16 +407,19 @@ void write_outputs(Search& s) {
   f.support.residual = balance_residual(s, s.u);
 }
 
+// Out of line: the cold path of flag_non_finite.
+[[gnu::noinline, gnu::cold]] void mark_non_finite(SupportSummary& summary) {
+  summary.status = Status::kNonFinite;
+  summary.message = "the state or the loads are not finite (inputs outside the model's ranges)";
+}
+
 // The end-of-solve check: a state, a load or a residual that is not finite is no result (inputs
 // outside contact::limits can overflow K h or Mg/K), whatever the route reported. The sum tests
 // all loads at once: a sum with a non-finite term is not finite.
 void flag_non_finite(Frame& f) {
-  SupportSummary& summary = f.support;
-  if (std::isfinite(f.alpha + f.beta + f.z + summary.residual + f.Fz.sum())) {
-    return;
+  if (!std::isfinite(f.alpha + f.beta + f.z + f.support.residual + f.Fz.sum())) [[unlikely]] {
+    mark_non_finite(f.support);
   }
-  summary.status = Status::kNonFinite;
-  summary.message = "the state or the loads are not finite (inputs outside the model's ranges)";
 }
 
 }  // namespace

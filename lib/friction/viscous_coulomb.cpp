@@ -101,8 +101,12 @@ void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Ps
       }
     }
   }
-  // fx + fy covers every force written, scale every slip speed (sums: no pass over the feet).
-  detail::flag_non_finite(frame, fx + fy + mz + scale);
+  // The end-of-solve check (balance.hpp's flag_non_finite) on values still in registers: fx + fy
+  // covers every force written and v0, v1, om the velocity (sums: no pass over the feet); with
+  // both finite and q, q̇ in contact::limits, the moment, the scale and so the residual are too.
+  if (!std::isfinite(fx + fy + v0 + v1 + om)) [[unlikely]] {
+    detail::mark_non_finite(frame);
+  }
 }
 
 template <bool kLoaded>
