@@ -323,7 +323,8 @@ json frame_to_json(const Robot& robot, const Frame& f, bool with_connection) {
   const int n = robot.legs();
   // JSON has no NaN or inf (nlohmann would write null): a non-finite result is no result.
   const double outputs = f.alpha + f.beta + f.z + f.Fz.sum() + f.v_body.sum() + f.Fxy.sum() +
-                         f.support.residual + f.friction.residual;
+                         f.support.residual + f.friction.residual + f.friction.dissipation +
+                         f.friction.certificate;
   if (!std::isfinite(outputs) || (with_connection && !f.A.allFinite())) {
     throw core::ComputationError(
         "the model's result is not finite (spring support: " +

@@ -101,10 +101,9 @@ void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Ps
       }
     }
   }
-  // The end-of-solve check (balance.hpp's flag_non_finite) on values still in registers: fx + fy
-  // covers every force written and v0, v1, om the velocity (sums: no pass over the feet); with
-  // both finite and q, q̇ in contact::limits, the moment, the scale and so the residual are too.
-  if (!std::isfinite(fx + fy + v0 + v1 + om)) [[unlikely]] {
+  // The end-of-solve check (balance.hpp's flag_non_finite) on values at hand: fx + fy covers
+  // every force written and v0, v1, om the velocity (sums: no pass over the feet).
+  if (!std::isfinite(fx + fy + v0 + v1 + om + s.residual + dissipation)) [[unlikely]] {
     detail::mark_non_finite(frame);
   }
 }

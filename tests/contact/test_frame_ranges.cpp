@@ -264,7 +264,10 @@ TEST(FrameRanges, OutOfRangeRobotsNeverComeOutConvergedWithNonFiniteValues) {
       const bool finite_friction =
           f.v_body.allFinite() && f.Fxy.allFinite() && std::isfinite(f.friction.residual);
       if (!finite_friction) {
-        EXPECT_FALSE(f.friction.converged) << trial << " v = " << v;
+        EXPECT_FALSE(f.friction.converged)
+            << trial << " v = " << v << " law " << static_cast<int>(law) << " res "
+            << f.friction.residual << " v_body " << f.v_body.transpose() << " F "
+            << f.Fxy.sum();
         ++flagged;
       }
       if (!finite_support || !finite_friction) {
