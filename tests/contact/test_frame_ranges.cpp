@@ -266,8 +266,7 @@ TEST(FrameRanges, OutOfRangeRobotsNeverComeOutConvergedWithNonFiniteValues) {
       if (!finite_friction) {
         EXPECT_FALSE(f.friction.converged)
             << trial << " v = " << v << " law " << static_cast<int>(law) << " res "
-            << f.friction.residual << " v_body " << f.v_body.transpose() << " F "
-            << f.Fxy.sum();
+            << f.friction.residual << " v_body " << f.v_body.transpose() << " F " << f.Fxy.sum();
         ++flagged;
       }
       if (!finite_support || !finite_friction) {
