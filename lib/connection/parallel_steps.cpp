@@ -47,7 +47,8 @@ void step_increments(const contact::Robot& robot, const StepBatch& batch, Fricti
       f.qdot = batch.qdot.middleCols(k * n, n);
       evaluate(robot, f, law);
       if (f.support.status == contact::SupportSummary::Status::kUnsupported ||
-          f.support.status == contact::SupportSummary::Status::kIterationLimit) {
+          f.support.status == contact::SupportSummary::Status::kIterationLimit ||
+          f.support.status == contact::SupportSummary::Status::kNonFinite) {
         ++w.unsupported;
       }
       data.increments[static_cast<std::size_t>(k)] = core::exp(f.v_body * batch.dt);

@@ -18,8 +18,9 @@ namespace detail {
 
 void tally(const contact::Frame& f, double t, TrajectorySummary& s) {
   using Status = contact::SupportSummary::Status;
-  const bool unsupported =
-      f.support.status == Status::kUnsupported || f.support.status == Status::kIterationLimit;
+  const bool unsupported = f.support.status == Status::kUnsupported ||
+                           f.support.status == Status::kIterationLimit ||
+                           f.support.status == Status::kNonFinite;
   s.unsupported += unsupported ? 1 : 0;
   s.not_converged += f.friction.converged ? 0 : 1;
   s.not_unique += f.friction.unique ? 0 : 1;

@@ -220,7 +220,7 @@ struct TrajectorySummary {
   long long frames = 0;              ///< frames evaluated (steps + 1)
   core::Pose2 end = {};              ///< the pose at the last frame
   long long unsupported = 0;         ///< frames the spring support could not balance
-                                     ///< (kUnsupported, kIterationLimit)
+                                     ///< (kUnsupported, kIterationLimit, kNonFinite)
   long long not_converged = 0;       ///< frames whose friction solve did not converge
   long long not_unique = 0;          ///< frames with a continuum of balancing body velocities
   double max_friction_residual = 0;  ///< the largest friction.residual over the frames

@@ -1,10 +1,14 @@
 #include "contact/frame_batch.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <exception>
+#include <cstdlib>
 #include <utility>
 
+#include "contact/spring_support.hpp"
 #include "core/error.hpp"
+#include "core/json_input.hpp"
+#include "core/range.hpp"
 
 namespace slipwalk::contact {
 
@@ -12,45 +16,16 @@ namespace {
 
 using core::InputError;
 
-/// Splits one CSV line (no quoting: numbers only) and records where each cell starts.
-void split(const std::string& line, std::vector<std::string>& cells, std::vector<int>& starts) {
-  cells.clear();
-  starts.clear();
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t end = line.find(',', begin);
-    cells.push_back(line.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
-    starts.push_back(static_cast<int>(begin) + 1);
-    if (end == std::string::npos) {
-      break;
-    }
-    begin = end + 1;
+/// The cell as a number in `range`; InputError(where) otherwise.
+double cell_number(std::string_view cell, const std::string& where, const core::Range& range) {
+  const std::string text(cell);
+  char* end = nullptr;
+  const double v = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
+    throw InputError(where, "expected a finite number, got '" + core::text_excerpt(text) + "'");
   }
-}
-
-double cell_number(const std::string& cell, const std::string& where) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(cell, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != cell.size() || !std::isfinite(v)) {
-    throw InputError(where, "expected a finite number, got '" + cell + "'");
-  }
+  core::require_in(where, v, range);  // an underflow (ERANGE) reads as the tiny value it is
   return v;
-}
-
-/// The line starting at `pos` (without its '\n'); advances `pos` past it. False at the end.
-bool next_line(const std::string& text, std::size_t& pos, std::string& line) {
-  if (pos >= text.size()) {
-    return false;
-  }
-  const std::size_t end = text.find('\n', pos);
-  line = text.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
-  pos = end == std::string::npos ? text.size() : end + 1;
-  return true;
 }
 
 }  // namespace
@@ -81,51 +56,70 @@ std::vector<std::string> batch_output_columns(int legs) {
 }
 
 FrameBatchReader::FrameBatchReader(std::string text, std::string source, int legs)
-    : text_(std::move(text)), source_(std::move(source)), legs_(legs) {
+    : text_(std::move(text)), source_(std::move(source)), legs_(legs), lines_(text_) {
   const std::vector<std::string> expected = batch_input_columns(legs);
   expected_cells_ = expected.size();
-  std::string line;
-  if (!next_line(text_, pos_, line)) {
+  std::string_view line;
+  if (!lines_.next(line)) {
     throw InputError(source_, "empty; expected a header line");
   }
-  split(line, cells_, starts_);
-  if (cells_ != expected) {
-    throw InputError(source_ + ":1:1",
-                     "header must be " + std::to_string(expected.size()) +
-                         " columns theta,q0x,q0y,q0z,qd0x,qd0y,qd0z,q1x,... for " +
-                         std::to_string(legs) + " legs");
+  core::split_cells(line, cells_, starts_);
+  // The first cell that differs names the place; a row too short or too long, its end.
+  for (std::size_t c = 0; c < std::max(cells_.size(), expected.size()); ++c) {
+    if (c < cells_.size() && c < expected.size() && cells_[c] == expected[c]) {
+      continue;
+    }
+    const int column = c < cells_.size() ? starts_[c] : static_cast<int>(line.size()) + 1;
+    std::string what = "header must be " + std::to_string(expected.size()) +
+                       " columns theta,q0x,q0y,q0z,qd0x,qd0y,qd0z,q1x,... for " +
+                       std::to_string(legs) + " legs; ";
+    if (c >= cells_.size()) {
+      what += "it ends before column '" + expected[c] + "'";
+    } else if (c >= expected.size()) {
+      what += "it has " + std::to_string(cells_.size()) + " columns";
+    } else {
+      what += "expected '" + expected[c] + "' here, got '" + core::text_excerpt(cells_[c]) + "'";
+    }
+    throw InputError(source_ + ":1:" + std::to_string(column), what);
   }
 }
 
 bool FrameBatchReader::next(Frame& frame) {
-  std::string line;
+  std::string_view line;
   do {
-    if (!next_line(text_, pos_, line)) {
+    if (!lines_.next(line)) {
       return false;
     }
-    ++row_;
   } while (line.empty());
-  split(line, cells_, starts_);
+  row_ = lines_.line_number();
+  core::split_cells(line, cells_, starts_);
   const std::string at_row = source_ + ":" + std::to_string(row_);
   if (cells_.size() != expected_cells_) {
     throw InputError(at_row, "has " + std::to_string(cells_.size()) + " cells, expected " +
                                  std::to_string(expected_cells_));
   }
-  const auto value = [&](std::size_t c) {
-    return cell_number(cells_[c], at_row + ":" + std::to_string(starts_[c]));
+  const auto value = [&](std::size_t c, const core::Range& range) {
+    return cell_number(cells_[c], at_row + ":" + std::to_string(starts_[c]), range);
   };
-  frame.theta = value(0);
+  frame.theta = value(0, limits::kYaw);
   for (int j = 0; j < legs_; ++j) {
     const std::size_t base = 1 + 6 * static_cast<std::size_t>(j);
     for (int i = 0; i < 3; ++i) {
-      frame.q(i, j) = value(base + static_cast<std::size_t>(i));
-      frame.qdot(i, j) = value(base + 3 + static_cast<std::size_t>(i));
+      frame.q(i, j) = value(base + static_cast<std::size_t>(i), limits::kPosition);
+      frame.qdot(i, j) = value(base + 3 + static_cast<std::size_t>(i), limits::kVelocity);
     }
   }
   return true;
 }
 
 void write_batch_row(core::CsvWriter& csv, long long frame_number, const Frame& f) {
+  // A non-finite result is no result (as frame_to_json): the batch stops with exit 1.
+  const double outputs = f.alpha + f.beta + f.z + f.Fz.sum() + f.v_body.sum() + f.Fxy.sum();
+  if (!std::isfinite(outputs)) {
+    throw core::ComputationError("frame " + std::to_string(frame_number) +
+                                 ": the model's result is not finite (spring support: " +
+                                 status_name(f.support.status) + ")");
+  }
   csv.cell(frame_number).cell(f.alpha).cell(f.beta).cell(f.z);
   csv.cell(f.v_body(0)).cell(f.v_body(1)).cell(f.v_body(2));
   csv.cell(static_cast<int>(f.support.status)).cell(f.friction.converged ? 1 : 0);

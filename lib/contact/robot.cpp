@@ -8,8 +8,14 @@
 namespace slipwalk::contact {
 
 namespace {
-std::string at(const char* name, int j) {
-  return std::string(name) + "[" + std::to_string(j) + "]";
+// Appended piecewise: GCC 12 warns falsely (-Wrestrict) on operator+ chains.
+std::string at(const char* name, int j, int i = -1) {
+  std::string where(name);
+  where.append("[").append(std::to_string(j)).append("]");
+  if (i >= 0) {
+    where.append("[").append(std::to_string(i)).append("]");
+  }
+  return where;
 }
 }  // namespace
 
@@ -24,8 +30,10 @@ Robot uniform_robot(int n, double K, double mu, double Mg) {
 
 void validate(const Robot& robot) {
   const int n = robot.legs();
-  if (n < 1) {
-    throw core::InputError("K", "a robot needs at least one leg");
+  if (n < 1 || n > limits::kMaxLegs) {
+    std::string what = "a robot needs 1 to ";
+    what.append(std::to_string(limits::kMaxLegs)).append(" legs, got ").append(std::to_string(n));
+    throw core::InputError("K", what);
   }
   if (robot.mu.size() != n) {
     throw core::InputError(
@@ -36,20 +44,20 @@ void validate(const Robot& robot) {
         "w", "has " + std::to_string(robot.w.cols()) + " entries, K has " + std::to_string(n));
   }
   for (int j = 0; j < n; ++j) {
-    if (!std::isfinite(robot.K(j)) || robot.K(j) <= 0.0) {
-      throw core::InputError(at("K", j),
-                             "must be positive, got " + core::format_double(robot.K(j)));
-    }
-    if (!std::isfinite(robot.mu(j)) || robot.mu(j) < 0.0) {
-      throw core::InputError(at("mu", j),
-                             "must be non-negative, got " + core::format_double(robot.mu(j)));
-    }
-    if (!robot.w.col(j).allFinite()) {
-      throw core::InputError(at("w", j), "must be finite");
+    core::require_in(at("K", j), robot.K(j), limits::kStiffness);
+    require_friction(at("mu", j), robot.mu(j));
+    for (int i = 0; i < 2; ++i) {
+      core::require_in(at("w", j, i), robot.w(i, j), limits::kAnisotropy);
     }
   }
-  if (!std::isfinite(robot.Mg) || robot.Mg <= 0.0) {
-    throw core::InputError("Mg", "must be positive, got " + core::format_double(robot.Mg));
+  core::require_in("Mg", robot.Mg, limits::kWeight);
+}
+
+void require_friction(const std::string& where, double mu) {
+  if (mu != 0.0 && !limits::kFriction.contains(mu)) {
+    std::string what = "must be 0 or in ";
+    what.append(limits::kFriction.describe()).append(", got ").append(core::format_double(mu));
+    throw core::InputError(where, what);
   }
 }
 
@@ -82,25 +90,34 @@ CoulombScratch::CoulombScratch(int legs)
       weight(FootRow::Zero(padded_feet(legs))),
       inv_weight2(FootRow::Zero(padded_feet(legs))) {}
 
+namespace {
+
+// The cold path of check_frame: names the first value out of its range.
+[[gnu::noinline, gnu::cold]] void name_out_of_range(const Frame& frame) {
+  for (int j = 0; j < frame.legs(); ++j) {
+    for (int i = 0; i < 3; ++i) {
+      core::require_in(at("q", j, i), frame.q(i, j), limits::kPosition);
+      core::require_in(at("qdot", j, i), frame.qdot(i, j), limits::kVelocity);
+    }
+  }
+  core::require_in("theta", frame.theta, limits::kYaw);
+}
+
+}  // namespace
+
 void check_frame(const Robot& robot, const Frame& frame) {
   const int n = robot.legs();
   if (frame.q.cols() != n || frame.qdot.cols() != n) {
     throw core::InputError("q", "has " + std::to_string(frame.q.cols()) + " feet, the robot " +
                                     std::to_string(n) + " legs");
   }
-  // One vectorized test for the usual case; the loop only to name the culprit.
-  if (!frame.q.allFinite() || !frame.qdot.allFinite()) {
-    for (int j = 0; j < n; ++j) {
-      if (!frame.q.col(j).allFinite()) {
-        throw core::InputError(at("q", j), "must be finite");
-      }
-      if (!frame.qdot.col(j).allFinite()) {
-        throw core::InputError(at("qdot", j), "must be finite");
-      }
-    }
-  }
-  if (!std::isfinite(frame.theta)) {
-    throw core::InputError("theta", "must be finite");
+  // One vectorized test per matrix (the ranges are symmetric; NaN fails every comparison), and
+  // a loop only to name the culprit.
+  const bool inside = (frame.q.array().abs() <= limits::kPosition.hi).all() &&
+                      (frame.qdot.array().abs() <= limits::kVelocity.hi).all() &&
+                      limits::kYaw.contains(frame.theta);
+  if (!inside) [[unlikely]] {
+    name_out_of_range(frame);
   }
 }
 

@@ -12,15 +12,43 @@
 #include <string>
 #include <vector>
 
+#include "core/range.hpp"
+
 namespace slipwalk::contact {
+
+/// The admissible inputs of the model (validate(), check_frame(), the frame reader). They are
+/// generous for any legged robot, and chosen so that every intermediate quantity of the spring
+/// support (§3.3) and the friction solvers (§3.4) stays finite and normal in double precision:
+///  - spring support (eqs. 3.6-3.9): the start z* = −(Σ K q_z + Mg)/Σ K (§3.3.1) and every later
+///    height are at most |q| + Mg/K_min ≤ 1e3 + 1e7/1e-3 ≈ 1e10 m; a load K h ≤ 1e9 · 1e10 =
+///    1e19 N, a moment q F ≤ 1e22 N m, U = ½ K h² ≤ 1e29 J, the Hessian Σ K a aᵀ over 1e5 legs
+///    ≤ 1e14 N/m and its 3 × 3 determinants ≤ 1e42; the smallest compression Mg/Σ K ≥
+///    1e-6/(1e5 · 1e9) = 1e-20 m is still normal, and the residuals divide by Mg ≥ 1e-6 N.
+///  - friction (eqs. 3.12-3.19): a foot's weight c = μ F_z ≤ 1e2 · 1e19 = 1e21 N, its metric
+///    ‖I + w wᵀ‖ ≤ 1 + 2e6, lever arms ≤ √2 · 1e3 m, slip speeds ≤ ~1e7 m/s, so the Coulomb
+///    solver's squared residuals (c ‖W‖ ‖u‖)² ≤ ~1e80 and the cubes of its Hessian ≤ ~1e120.
+///    μ is 0 (no friction) or at least 1e-6: a μ near the smallest doubles makes c subnormal and
+///    1/c² (the Coulomb solver's scaling) infinite.
+/// Values outside these ranges are refused as bad input (core::InputError) with the range named.
+namespace limits {
+inline constexpr int kMaxLegs = 100000;  ///< legs of one robot (a JSON frame of ~25 MB)
+inline constexpr core::Range kStiffness = core::closed(1e-3, 1e9, "N/m");  ///< K_j
+inline constexpr core::Range kFriction = core::closed(1e-6, 1e2);          ///< μ_j when not 0
+inline constexpr core::Range kAnisotropy = core::closed(-1e3, 1e3);        ///< each w_j entry
+inline constexpr core::Range kWeight = core::closed(1e-6, 1e7, "N");       ///< Mg
+inline constexpr core::Range kPosition = core::closed(-1e3, 1e3, "m");     ///< each q entry
+inline constexpr core::Range kVelocity = core::closed(-1e3, 1e3, "m/s");   ///< each q̇ entry
+inline constexpr core::Range kYaw = core::closed(-1e6, 1e6, "rad");  ///< θ (sin/cos to ~1e-10)
+}  // namespace limits
 
 /// Constants of a legged robot. Every leg is a vertical spring with Coulomb-type friction.
 struct Robot {
-  Eigen::VectorXd K;   ///< (N) leg spring stiffness, N/m; valid: > 0, finite
-  Eigen::VectorXd mu;  ///< (N) friction coefficient; valid: ≥ 0, finite
+  Eigen::VectorXd K;   ///< (N) leg spring stiffness, N/m; valid: limits::kStiffness
+  Eigen::VectorXd mu;  ///< (N) friction coefficient; valid: 0 or limits::kFriction
   Eigen::Matrix2Xd w;  ///< (2 x N) anisotropy: enhanced-traction direction × magnitude in the
-                       ///< body frame (eq. 3.19, H ∝ I + w wᵀ); zero = isotropic
-  double Mg = 1.0;     ///< N, total weight carried by the legs; valid: > 0, finite
+                       ///< body frame (eq. 3.19, H ∝ I + w wᵀ); zero = isotropic; valid:
+                       ///< limits::kAnisotropy
+  double Mg = 1.0;     ///< N, total weight carried by the legs; valid: limits::kWeight
 
   [[nodiscard]] int legs() const { return static_cast<int>(K.size()); }
 };
@@ -28,9 +56,13 @@ struct Robot {
 /// A robot with n legs, all with stiffness K, friction μ, isotropic.
 [[nodiscard]] Robot uniform_robot(int n, double K = 1.0, double mu = 1.0, double Mg = 1.0);
 
-/// Throws core::InputError ("K[3]: must be positive, got -1") for sizes that disagree, values
-/// out of range and non-numbers.
+/// Throws core::InputError ("K[3]: must be in [0.001, 1000000000] N/m, got -1") for sizes that
+/// disagree, more than limits::kMaxLegs legs, values out of the ranges of `limits` and
+/// non-numbers.
 void validate(const Robot& robot);
+
+/// Throws core::InputError(where, ...) unless μ is 0 or in limits::kFriction.
+void require_friction(const std::string& where, double mu);
 
 /// What the spring-support search did (§3.3, Alg. 1; contact/spring_support.hpp).
 struct SupportSummary {
@@ -48,6 +80,8 @@ struct SupportSummary {
                       ///< unbounded tilt starts: vertical balance holds there, moment balance not
     kIterationLimit,  ///< safety stop after SupportOptions::max_iterations contact changes (not
                       ///< reached in general position; see contact/spring_support.cpp)
+    kNonFinite,       ///< the search ended on a state or loads that are not finite (inputs
+                      ///< outside the ranges of `limits`): no result, never a balance
   };
   /// Which algorithm produced the state (contact/spring_support.hpp).
   enum class Route {
@@ -76,7 +110,8 @@ struct FrictionSummary {
                 ///< fast_path = false, or a load)
     kFallback,  ///< the smoothing path after the fast path stalled (a restart from the start)
   };
-  bool converged = true;
+  bool converged = true;  ///< false when the solve failed, also whenever v_body, the forces or
+                          ///< the residual came out non-finite (checked at the end of every solve)
   Route route = Route::kDirect;
   int iterations = 0;     ///< 0 for the direct (viscous-Coulomb) solve
   double residual = 0.0;  ///< planar balance residual max(‖ΣF‖/F, |ΣM_z|/(F L)), F = the size
@@ -180,7 +215,8 @@ struct Frame {
   return -beta * f.q(0, j) + alpha * f.q(1, j) + f.q(2, j) + z;
 }
 
-/// Throws core::InputError if the frame's sizes do not match the robot or an input is not finite.
+/// Throws core::InputError if the frame's sizes do not match the robot or an input is outside
+/// limits::kPosition, kVelocity or kYaw (non-finite included). One vectorized test per matrix.
 void check_frame(const Robot& robot, const Frame& frame);
 
 }  // namespace slipwalk::contact

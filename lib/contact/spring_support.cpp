@@ -407,6 +407,21 @@ void write_outputs(Search& s) {
   f.support.residual = balance_residual(s, s.u);
 }
 
+// Out of line: the cold path of flag_non_finite.
+[[gnu::noinline, gnu::cold]] void mark_non_finite(SupportSummary& summary) {
+  summary.status = Status::kNonFinite;
+  summary.message = "the state or the loads are not finite (inputs outside the model's ranges)";
+}
+
+// The end-of-solve check: a state, a load or a residual that is not finite is no result (inputs
+// outside contact::limits can overflow K h or Mg/K), whatever the route reported. The sum tests
+// all loads at once: a sum with a non-finite term is not finite.
+void flag_non_finite(Frame& f) {
+  if (!std::isfinite(f.alpha + f.beta + f.z + f.support.residual + f.Fz.sum())) [[unlikely]] {
+    mark_non_finite(f.support);
+  }
+}
+
 }  // namespace
 
 int default_support_iterations(int n) {
@@ -427,6 +442,8 @@ const char* status_name(SupportSummary::Status status) {
       return "unsupported";
     case Status::kIterationLimit:
       return "iteration-limit";
+    case Status::kNonFinite:
+      return "non-finite";
   }
   return "unknown";
 }
@@ -443,6 +460,7 @@ void spring_support(const Robot& robot, Frame& frame, const SupportOptions& opti
 
   // ---- the fast route: active-set Newton on U, certified or handed over ----------------------
   if (options.newton && options.path == nullptr && detail::support_by_newton(robot, frame)) {
+    flag_non_finite(frame);
     return;
   }
 
@@ -510,6 +528,7 @@ void spring_support(const Robot& robot, Frame& frame, const SupportOptions& opti
     }
   }
   write_outputs(s);
+  flag_non_finite(frame);
 }
 
 }  // namespace slipwalk::contact

@@ -53,7 +53,7 @@ struct SupportOptions {
 /// The default iteration limit for n legs (see SupportOptions::max_iterations).
 [[nodiscard]] int default_support_iterations(int n);
 
-/// "balanced", "line", "point", "unsupported", "iteration-limit".
+/// "balanced", "line", "point", "unsupported", "iteration-limit", "non-finite".
 [[nodiscard]] const char* status_name(SupportSummary::Status status);
 
 /// Fills frame.alpha, beta, z, contact, Fz and frame.support from frame.q. Never throws on

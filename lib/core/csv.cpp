@@ -30,6 +30,43 @@ std::string format_double(double value) {
   return buffer.data();
 }
 
+LineReader::LineReader(std::string_view text) : rest_(text) {
+  constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  if (rest_.substr(0, kBom.size()) == kBom) {
+    rest_.remove_prefix(kBom.size());
+  }
+}
+
+bool LineReader::next(std::string_view& line) {
+  if (rest_.empty()) {
+    return false;
+  }
+  const std::size_t end = rest_.find('\n');
+  line = rest_.substr(0, end);
+  rest_.remove_prefix(end == std::string_view::npos ? rest_.size() : end + 1);
+  if (!line.empty() && line.back() == '\r') {
+    line.remove_suffix(1);
+  }
+  ++line_;
+  return true;
+}
+
+void split_cells(std::string_view line, std::vector<std::string_view>& cells,
+                 std::vector<int>& starts) {
+  cells.clear();
+  starts.clear();
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t end = line.find(',', begin);
+    cells.push_back(line.substr(begin, end == std::string_view::npos ? end : end - begin));
+    starts.push_back(static_cast<int>(begin) + 1);
+    if (end == std::string_view::npos) {
+      break;
+    }
+    begin = end + 1;
+  }
+}
+
 CsvWriter::CsvWriter(std::ostream& out, const std::vector<std::string>& columns)
     : out_(out), columns_(columns.size()) {
   for (std::size_t i = 0; i < columns.size(); ++i) {

@@ -1,6 +1,7 @@
 #pragma once
 // A small CSV table writer: a header, then rows of numbers or text, doubles printed so that a
-// value read back is the value written (round-trip exact).
+// value read back is the value written (round-trip exact); and the line splitting that every
+// reader of our plain CSV inputs shares (frame batches, residual terms).
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -11,6 +12,28 @@ namespace slipwalk::core {
 /// Formats a double in the fewest digits (15–17) that read back bit-identical; NaN and inf as
 /// nan/inf.
 std::string format_double(double value);
+
+/// The lines of a text, one at a time, with line numbers for messages. A line ends at '\n'; one
+/// '\r' before it (or at the end of the text) is part of the line end, so CRLF files read as
+/// their LF twins; a UTF-8 byte-order mark before the first line is dropped (spreadsheets write
+/// both). Views point into the text, which must outlive the reader.
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text);
+  /// The next line without its end; false once the text is used up.
+  bool next(std::string_view& line);
+  /// The 1-based number of the line last returned (0 before the first).
+  [[nodiscard]] long long line_number() const { return line_; }
+
+ private:
+  std::string_view rest_;
+  long long line_ = 0;
+};
+
+/// Splits a line at every ',' (no quoting: our inputs are numbers) into `cells`, views into
+/// `line`, and `starts`, the 1-based column where each cell starts. Reuses both vectors.
+void split_cells(std::string_view line, std::vector<std::string_view>& cells,
+                 std::vector<int>& starts);
 
 class CsvWriter {
  public:

@@ -183,4 +183,10 @@ Eigen::Vector3d Psd3::project_to_range(const Eigen::Vector3d& y) const {
   return out;
 }
 
+void mark_non_finite(contact::Frame& frame) {
+  frame.friction.converged = false;
+  frame.friction.message =
+      "the body velocity or the forces are not finite (inputs outside the model's ranges)";
+}
+
 }  // namespace slipwalk::friction::detail

@@ -218,4 +218,19 @@ struct BalanceSum {
   }
 };
 
+/// Marks a solve as failed with a non-finite result (balance.cpp; out of line, the cold path).
+void mark_non_finite(contact::Frame& frame);
+
+/// The end-of-solve check of every solver: a body velocity, a force or a summary number that is
+/// not finite is no result, so friction.converged becomes false and the message says why.
+/// `force_sum` is any sum over all the forces written (frame.Fxy.sum(), or sums the solver already
+/// has): a sum with a non-finite term is not finite, so the forces need no second pass.
+inline void flag_non_finite(contact::Frame& frame, double force_sum) {
+  const auto& s = frame.friction;
+  if (!std::isfinite(force_sum + frame.v_body.sum() + s.residual + s.certificate + s.dissipation))
+      [[unlikely]] {
+    mark_non_finite(frame);
+  }
+}
+
 }  // namespace slipwalk::friction::detail

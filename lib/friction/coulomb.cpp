@@ -803,6 +803,7 @@ bool Solver::flat_direction(Eigen::Matrix3d Q, int n_static) const {
 void solve_coulomb(const contact::Robot& robot, contact::Frame& frame,
                    const CoulombOptions& options) {
   coulomb::Solver(robot, frame, options).run();
+  detail::flag_non_finite(frame, frame.Fxy.sum());
 }
 
 }  // namespace slipwalk::friction

@@ -459,10 +459,9 @@ bool try_static_sets(Context& cx, const Eigen::Vector3d& y, double delta) {
   return false;
 }
 
-}  // namespace
-
-void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
-                          const Eigen::Vector3d& load, const CoulombOptions& options) {
+/// solve_coulomb_loaded without its end-of-solve check (several exits).
+void solve_loaded(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vector3d& load,
+                  const CoulombOptions& options) {
   if (load(0) == 0.0 && load(1) == 0.0 && load(2) == 0.0) {
     // No load is the flat problem: its fast solver (a slope of angle 0 is flat bit for bit).
     solve_coulomb(robot, frame, options);
@@ -595,6 +594,14 @@ void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
   } else if (!s.unique) {
     s.message = "a continuum of body velocities balances the load (flat minimum)";
   }
+}
+
+}  // namespace
+
+void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
+                          const Eigen::Vector3d& load, const CoulombOptions& options) {
+  solve_loaded(robot, frame, load, options);
+  detail::flag_non_finite(frame, frame.Fxy.sum());
 }
 
 }  // namespace slipwalk::friction

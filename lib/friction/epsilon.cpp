@@ -256,6 +256,7 @@ void solve_epsilon(const contact::Robot& robot, contact::Frame& frame, double ep
   } else {
     EpsilonSolver<false>(robot, frame, cs, law).run(options);
   }
+  detail::flag_non_finite(frame, frame.Fxy.sum());
 }
 
 }  // namespace slipwalk::friction

@@ -101,6 +101,11 @@ void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Ps
       }
     }
   }
+  // The end-of-solve check (balance.hpp's flag_non_finite) on values at hand: fx + fy covers
+  // every force written and v0, v1, om the velocity (sums: no pass over the feet).
+  if (!std::isfinite(fx + fy + v0 + v1 + om + s.residual + dissipation)) [[unlikely]] {
+    detail::mark_non_finite(frame);
+  }
 }
 
 template <bool kLoaded>

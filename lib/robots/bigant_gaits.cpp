@@ -44,19 +44,15 @@ Walker bigant_walker(std::string name, const Shapes& shapes, const Offsets& offs
 }
 
 void check_sweep(const std::string& where, double sweep) {
-  detail::require_positive(where, sweep);
-  detail::require_range(where, sweep, 0.0, kBigAntMaxSweep);
+  detail::require_in(where, sweep, core::positive_up_to(kBigAntMaxSweep, "turns"));
 }
 
 }  // namespace
 
 Walker bigant_tripod(const TripodGait& gait) {
-  detail::require_positive("bigant_tripod.frequency", gait.frequency);
-  detail::require_range("bigant_tripod.steer", gait.steer, -1.0, 1.0);
-  detail::require_range("bigant_tripod.duty", gait.duty, 0.5, 1.0);
-  if (gait.duty >= 1.0) {
-    throw core::InputError("bigant_tripod.duty", "must be below 1 (the legs need a return)");
-  }
+  detail::require_in("bigant_tripod.frequency", gait.frequency, detail::kFrequency);
+  detail::require_in("bigant_tripod.steer", gait.steer, core::closed(-1.0, 1.0));
+  detail::require_in("bigant_tripod.duty", gait.duty, detail::kDuty);
   check_sweep("bigant_tripod.sweep", gait.sweep);
 
   // Steering shortens the inner side's sweep (robots.hpp); HL, ML, FL are the left legs.
@@ -72,7 +68,7 @@ Walker bigant_tripod(const TripodGait& gait) {
 }
 
 Walker bigant_metachronal(const MetachronalGait& gait) {
-  detail::require_positive("bigant_metachronal.frequency", gait.frequency);
+  detail::require_in("bigant_metachronal.frequency", gait.frequency, detail::kFrequency);
   check_sweep("bigant_metachronal.sweep", gait.sweep);
   Shapes shapes;
   shapes.fill({2.0 / 3.0, gait.sweep, 0.0, true});

@@ -5,6 +5,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/range.hpp"
 
 namespace slipwalk::robots {
 
@@ -38,16 +39,10 @@ Unwrapped unwrapped(const ClockShape& c, double s) {
 
 void validate(const ClockShape& c, const char* where) {
   const std::string w(where);
-  if (!std::isfinite(c.duty) || c.duty <= 0.0 || c.duty >= 1.0) {
-    throw core::InputError(w + ".duty", "must be in (0, 1), got " + core::format_double(c.duty));
-  }
-  if (!std::isfinite(c.sweep) || c.sweep < 0.0 || c.sweep >= 1.0) {
-    throw core::InputError(w + ".sweep",
-                           "must be in [0, 1) turns, got " + core::format_double(c.sweep));
-  }
-  if (!std::isfinite(c.center)) {
-    throw core::InputError(w + ".center", "must be finite");
-  }
+  core::require_in(w + ".duty", c.duty, core::Range{0.0, 1.0, true, true, ""});
+  core::require_in(w + ".sweep", c.sweep, core::Range{0.0, 1.0, false, true, "turns"});
+  // The phase s + D/2 and its floor stay exact to ~1e-10 turns for |center| ≤ 1e6.
+  core::require_in(w + ".center", c.center, core::closed(-1e6, 1e6, "turns"));
 }
 
 ClockState clock_at(const ClockShape& shape, double s) {

@@ -22,16 +22,13 @@ void validate(const UndulationGait& g) {
     throw core::InputError("multipod.legs", "must be 6, 8, 10 or 12 (the thesis' Multipods), got " +
                                                 std::to_string(g.legs));
   }
-  if (!std::isfinite(g.dphi)) {
-    throw core::InputError("multipod.dphi", "must be finite");
-  }
-  detail::require_positive("multipod.frequency", g.frequency);
-  detail::require_range("multipod.roll_amplitude", g.roll_amplitude, 0.0, std::numbers::pi / 2);
-  if (g.roll_amplitude >= std::numbers::pi / 2) {
-    throw core::InputError("multipod.roll_amplitude", "must be below pi/2");
-  }
-  detail::require_range("multipod.yaw_amplitude", g.yaw_amplitude, 0.0, std::numbers::pi / 4);
-  detail::require_positive("multipod.stiffness", g.stiffness);
+  detail::require_in("multipod.dphi", g.dphi, detail::kAngle);
+  detail::require_in("multipod.frequency", g.frequency, detail::kFrequency);
+  detail::require_in("multipod.roll_amplitude", g.roll_amplitude,
+                     core::Range{0.0, std::numbers::pi / 2, false, true, "rad"});
+  detail::require_in("multipod.yaw_amplitude", g.yaw_amplitude,
+                     core::closed(0.0, std::numbers::pi / 4, "rad"));
+  detail::require_in("multipod.stiffness", g.stiffness, contact::limits::kStiffness);
 }
 
 void multipod_feet(const MultipodGeometry& geo, const UndulationGait& g, double t,

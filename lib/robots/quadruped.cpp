@@ -46,15 +46,11 @@ Swing trot_foot(const TrotGait& g, double s) {
 }  // namespace
 
 Walker quadruped_trot(const TrotGait& gait) {
-  detail::require_positive("quadruped_trot.frequency", gait.frequency);
-  detail::require_range("quadruped_trot.duty", gait.duty, 0.5, 1.0);
-  if (gait.duty >= 1.0) {
-    throw core::InputError("quadruped_trot.duty", "must be below 1 (the legs need a swing)");
-  }
-  detail::require_positive("quadruped_trot.stride", gait.stride);
-  detail::require_range("quadruped_trot.stride", gait.stride, 0.0, 0.3);
-  detail::require_positive("quadruped_trot.swing_height", gait.swing_height);
-  detail::require_range("quadruped_trot.swing_height", gait.swing_height, 0.0, 0.2);
+  detail::require_in("quadruped_trot.frequency", gait.frequency, detail::kFrequency);
+  detail::require_in("quadruped_trot.duty", gait.duty, detail::kDuty);
+  detail::require_in("quadruped_trot.stride", gait.stride, core::positive_up_to(0.3, "m"));
+  detail::require_in("quadruped_trot.swing_height", gait.swing_height,
+                     core::positive_up_to(0.2, "m"));
 
   const double mg = kMass * kGravity;
   Walker w;

@@ -68,13 +68,11 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> parse_residual(std::string_view text,
   const int cols = 2 * legs;
   Eigen::Matrix<double, 3, Eigen::Dynamic> B(3, cols);
   int row = 0;
-  int line_no = 0;
-  int last_line = 0;
-  while (!text.empty()) {
-    const std::size_t end = text.find('\n');
-    std::string_view line = text.substr(0, end);
-    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
-    ++line_no;
+  long long line_no = 0;
+  long long last_line = 0;
+  core::LineReader lines(text);  // CRLF reads as LF
+  for (std::string_view line; lines.next(line);) {
+    line_no = lines.line_number();
     const std::string_view content = line.substr(0, line.find('#'));
     if (trim(content).empty()) {
       continue;
@@ -117,7 +115,7 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> parse_residual(std::string_view text,
     last_line = line_no;
   }
   if (row != 3) {
-    throw InputError(file + ":" + std::to_string(std::max(last_line, 1)),
+    throw InputError(file + ":" + std::to_string(std::max(last_line, 1LL)),
                      "B has 3 rows (v_x, v_y, omega), the file has " + std::to_string(row));
   }
   return B;

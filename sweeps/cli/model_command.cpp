@@ -1,6 +1,11 @@
 // slipwalk model: one frame of the multi-legged model (thesis ch. 3) in the frame format of
 // DESIGN.md, or a CSV batch of frames (one per row) for trajectories; the work is
 // connection/frame_model.hpp's, this file parses the options and writes the text.
+// Exit codes: 2 for bad input, named at its place (a path that is missing or a folder, via
+// core::read_input_file; malformed or duplicated JSON, via core::parse_json; a value outside
+// contact::limits, at its file:line:col or CSV row:col); 1 for a result that is not finite
+// (core::ComputationError from frame_to_json / write_batch_row); 0 for finite output, which says
+// in "support"."status", "friction"."converged" and "friction"."unique" how far it holds.
 #include <array>
 #include <filesystem>
 #include <fstream>

@@ -65,7 +65,8 @@ contact::FrameInput read_robot(const Reader& r, std::string_view key, std::strin
 /// "spring support: <status>[: <message>]" when the search found no balance, else empty.
 std::string support_failure(const contact::Frame& f) {
   using Status = contact::SupportSummary::Status;
-  if (f.support.status != Status::kUnsupported && f.support.status != Status::kIterationLimit) {
+  if (f.support.status != Status::kUnsupported && f.support.status != Status::kIterationLimit &&
+      f.support.status != Status::kNonFinite) {
     return {};
   }
   return std::string("spring support: ") + contact::status_name(f.support.status) +

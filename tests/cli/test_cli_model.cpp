@@ -69,11 +69,16 @@ TEST(CliModel, BadInputExits2NamingThePlaceAndWritesNothing) {
   };
   const std::vector<Case> cases = {
       {"{\"q\": [[0,0,-1]],\n \"qdot\": [[0,0,0]] oops}", "frame.json:2:20"},
-      {R"({"q": [[0,0,-1],[1,0,-1]], "qdot": [[0,0,0]]})", "frame.json: qdot"},
-      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "K": [-1]})", "frame.json: K[0]"},
-      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "mu": [-0.5]})", "frame.json: mu[0]"},
-      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "Mg": 0})", "frame.json: Mg"},
+      {R"({"q": [[0,0,-1],[1,0,-1]], "qdot": [[0,0,0]]})", "frame.json:1:36: qdot: has 1"},
+      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "K": [-1]})",
+       "frame.json:1:44: K[0]: must be in [0.001, 1000000000] N/m, got -1"},
+      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "mu": [-0.5]})",
+       "frame.json:1:45: mu[0]: must be 0 or in [1e-06, 100], got -0.5"},
+      {R"({"q": [[0,0,-1]], "qdot": [[0,0,0]], "Mg": 0})", "frame.json:1:44: Mg: must be in"},
       {R"({"q": [[0,0,NaN]], "qdot": [[0,0,0]]})", "frame.json:1:"},
+      // The issue's example: an anisotropy that would overflow I + w wᵀ.
+      {"{\"q\": [[0,0,-1]], \"qdot\": [[0,0,0]],\n \"w\": [[1e308, 0]]}",
+       "frame.json:2:9: w[0][0]: must be in [-1000, 1000], got 1e+308"},
   };
   for (const Case& c : cases) {
     write_text(dir / "frame.json", c.text);
@@ -97,6 +102,68 @@ TEST(CliModel, BadInputExits2NamingThePlaceAndWritesNothing) {
   EXPECT_EQ(bad_cell.exit_code, 2);
   EXPECT_NE(bad_cell.err.find("frames.csv:2:10"), std::string::npos) << bad_cell.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Inputs that are not readable files, as --in or --robot, are bad input naming the path; so is a
+// robot file out of range, at its place.
+TEST(CliModel, FoldersMissingFilesAndBadRobotsExit2NamingThePath) {
+  const ScratchDir dir;
+  const auto out = dir / "out.csv";
+  const auto frames = dir / "frames.csv";
+  const auto robot = dir / "robot.json";
+  write_text(frames, "theta,q0x,q0y,q0z,qd0x,qd0y,qd0z\n0,0,0,-1,0,0,0\n");
+  write_text(robot, R"({"legs": 1})");
+  std::filesystem::create_directory(dir / "folder.json");
+  const std::string folder = (dir / "folder.json").string();
+  const std::string missing = (dir / "missing.json").string();
+  const std::vector<std::vector<std::string>> runs = {
+      {"model", "--in", folder, "--out", out.string()},
+      {"model", "--in", missing, "--out", out.string()},
+      {"model", "--robot", folder, "--in", frames.string(), "--out", out.string()},
+      {"model", "--robot", missing, "--in", frames.string(), "--out", out.string()},
+      {"model", "--robot", robot.string(), "--in", folder, "--out", out.string()},
+  };
+  for (const auto& args : runs) {
+    const CommandResult r = run_slipwalk(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    const std::string& path = args[2] == folder || args[2] == missing ? args[2] : args[4];
+    EXPECT_NE(r.err.find("slipwalk: error: " + path + ": "), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  write_text(robot, "{\"legs\": 2,\r\n \"K\": [100, 1e308]}\r\n");
+  const CommandResult r = run_slipwalk(
+      {"model", "--robot", robot.string(), "--in", frames.string(), "--out", out.string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(robot.string() + ":2:13: K[1]: must be in [0.001, 1000000000] N/m"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A CRLF batch (as a spreadsheet writes it) gives the LF batch's output byte for byte.
+TEST(CliModel, CrlfBatchGivesTheLfOutput) {
+  const ScratchDir dir;
+  write_text(dir / "robot.json", "{\"K\": [100, 100, 100],\r\n \"Mg\": 9.81}\r\n");
+  const std::string lf =
+      "theta,q0x,q0y,q0z,qd0x,qd0y,qd0z,q1x,q1y,q1z,qd1x,qd1y,qd1z,q2x,q2y,q2z,qd2x,qd2y,qd2z\n"
+      "0,0.2,0.1,-0.1,0.1,0,0,-0.2,0.1,-0.1,0.1,0,0,0,-0.15,-0.1,-0.2,0,0\n"
+      "0.5,0.2,0.1,-0.1,0,0,0,-0.2,0.1,-0.1,0,0,0,0,-0.15,-0.1,0,0,0\n";
+  std::string crlf;
+  for (const char c : lf) {
+    crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  }
+  write_text(dir / "lf.csv", lf);
+  write_text(dir / "crlf.csv", crlf);
+  std::vector<std::string> outputs;
+  for (const char* name : {"lf.csv", "crlf.csv"}) {
+    const CommandResult r =
+        run_slipwalk({"model", "--friction", "coulomb", "--robot", (dir / "robot.json").string(),
+                      "--in", (dir / name).string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    outputs.push_back(r.out);
+  }
+  EXPECT_EQ(outputs[0], outputs[1]);
+  EXPECT_EQ(std::count(outputs[0].begin(), outputs[0].end(), '\n'), 3);
 }
 
 TEST(CliModel, DeepOrDuplicatedJsonExits2NamingTheFileAndWritesNothing) {

@@ -2,6 +2,9 @@
 // that says what and where.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "connection/local_connection.hpp"
 #include "contact/frame_json.hpp"
 #include "core/error.hpp"
@@ -37,23 +40,47 @@ TEST(FrameJson, ReadsTheFormatWithDefaults) {
 TEST(FrameJson, MalformedJsonNamesLineAndColumn) {
   EXPECT_EQ(where_of("{\"q\": [[0,0,-1]],\n \"qdot\": [[0,0,0]] oops}"), "f.json:2:20");
   EXPECT_EQ(where_of("{\"q\": [[NaN, 0, -1]], \"qdot\": [[0,0,0]]}"), "f.json:1:9");
-  EXPECT_EQ(where_of("[1, 2]"), "f.json");
+  EXPECT_EQ(where_of("[1, 2]"), "f.json:1:1");
 }
 
-TEST(FrameJson, BadValuesNameTheKeyAndLeg) {
+std::string what_of(const std::string& text) {
+  try {
+    (void)parse_frame_json(text, "f.json");
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+// A bad value is named by the place of the value itself (a missing key: of the document; an
+// unknown key: of the key), and its message starts with the value's name.
+TEST(FrameJson, BadValuesNameTheirPlaceKeyAndLeg) {
   const std::string qd = R"("qdot": [[0,0,0],[0,0,0]])";
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0]], )" + qd + "}"), "f.json: q[1]");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "qdot": [[0,0,0]]})"), "f.json: qdot");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "K": [1, -2], )" + qd + "}"), "f.json: K[1]");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "mu": [1, -0.1], )" + qd + "}"),
-            "f.json: mu[1]");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "Mg": 0, )" + qd + "}"), "f.json: Mg");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "Mg": "heavy", )" + qd + "}"), "f.json: Mg");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,"x",-1]], )" + qd + "}"), "f.json: q[1]");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "w": [[0,0]], )" + qd + "}"), "f.json: w");
-  EXPECT_EQ(where_of(R"({"q": [[0,0,-1],[1,0,-1]], "speed": 3, )" + qd + "}"), "f.json: speed");
-  EXPECT_EQ(where_of(R"({"qdot": [[0,0,0]]})"), "f.json: q");
-  EXPECT_EQ(where_of(R"({"q": [], "qdot": []})"), "f.json: q");
+  struct Case {
+    std::string text;
+    std::string what;
+  };
+  for (const Case& c : std::vector<Case>{
+           {R"({"q": [[0,0,-1],[1,0]], )" + qd + "}", "f.json:1:17: q[1]: expected 3 numbers"},
+           {R"({"q": [[0,0,-1],[1,0,-1]], "qdot": [[0,0,0]]})", "f.json:1:36: qdot: has 1 "},
+           {R"({"q": [[0,0,-1],[1,0,-1]], "K": [1, -2], )" + qd + "}",
+            "f.json:1:37: K[1]: must be in [0.001, 1000000000] N/m, got -2"},
+           {R"({"q": [[0,0,-1],[1,0,-1]], "mu": [1, -0.1], )" + qd + "}",
+            "f.json:1:38: mu[1]: must be 0 or in [1e-06, 100], got -0.1"},
+           {R"({"q": [[0,0,-1],[1,0,-1]], "Mg": 0, )" + qd + "}", "f.json:1:34: Mg: must be in"},
+           {R"({"q": [[0,0,-1],[1,0,-1]], "Mg": "heavy", )" + qd + "}",
+            "f.json:1:34: Mg: expected a number"},
+           {R"({"q": [[0,0,-1],[1,"x",-1]], )" + qd + "}", "f.json:1:20: q[1][1]: expected a"},
+           {R"({"q": [[0,0,-1],[1,0,-1]], "w": [[0,0]], )" + qd + "}", "f.json:1:33: w: has 1"},
+           {R"({"q": [[0,0,-1],[1,0,-1]], "speed": 3, )" + qd + "}",
+            "f.json:1:28: speed: unknown key"},
+           {R"({"qdot": [[0,0,0]]})", "f.json:1:1: q: missing"},
+           {R"({"q": [], "qdot": []})", "f.json:1:7: q: needs 1 to 100000 legs, got 0"},
+           {"{\"q\": [[0,0,-1]],\r\n\t\"qdot\": [[0,0,0]], \"theta\": 1e7}",
+            "f.json:2:30: theta: must be in [-1000000, 1000000] rad"},
+       }) {
+    EXPECT_EQ(what_of(c.text).rfind(c.what, 0), 0U) << what_of(c.text);
+  }
   EXPECT_EQ(where_of(R"({"q": [[0,0,1e999]], "qdot": [[0,0,0]]})"), "f.json:1:17");  // overflow
 }
 

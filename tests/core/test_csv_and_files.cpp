@@ -1,11 +1,15 @@
 // core: CSV values read back bit-identical; atomic files appear whole or not at all.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/atomic_file.hpp"
 #include "core/csv.hpp"
@@ -23,6 +27,61 @@ TEST(Csv, DoublesRoundTripExactly) {
   EXPECT_EQ(format_double(0.1 + 0.2), "0.30000000000000004");
   EXPECT_EQ(format_double(std::numeric_limits<double>::quiet_NaN()), "nan");
   EXPECT_EQ(format_double(-std::numeric_limits<double>::infinity()), "-inf");
+}
+
+// Every line-end convention a CSV input may come with reads as the same lines: LF, CRLF, a final
+// line without an end, and a spreadsheet's byte-order mark. Generated over random lines.
+TEST(Csv, LineReaderReadsCrlfAndByteOrderMarkAsLf) {
+  std::uint32_t state = 12345;
+  const auto next = [&state] { return state = state * 1664525U + 1013904223U; };
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<std::string> lines(1 + next() % 6);
+    for (auto& line : lines) {
+      for (std::uint32_t k = next() % 8; k > 0; --k) {
+        line += "ab,1.5 \t"[next() % 8];
+      }
+    }
+    const bool bom = trial % 3 == 0;
+    const bool last_ended = trial % 2 == 0;
+    for (const std::string eol : {"\n", "\r\n"}) {
+      std::string text = bom ? "\xEF\xBB\xBF" : "";
+      for (std::size_t i = 0; i < lines.size(); ++i) {
+        text += lines[i];
+        text += i + 1 < lines.size() || last_ended ? eol : "";
+      }
+      LineReader reader(text);
+      std::vector<std::string> read;
+      for (std::string_view line; reader.next(line);) {
+        read.emplace_back(line);
+        EXPECT_EQ(reader.line_number(), static_cast<long long>(read.size()));
+      }
+      // An empty last line without an end is no line at all.
+      std::vector<std::string> expected = lines;
+      if (!last_ended && expected.back().empty()) {
+        expected.pop_back();
+      }
+      EXPECT_EQ(read, expected) << trial;
+    }
+  }
+  // Only one '\r' belongs to the line end; another one is content.
+  LineReader reader("a\r\r\nb\r");
+  std::string_view line;
+  ASSERT_TRUE(reader.next(line));
+  EXPECT_EQ(line, "a\r");
+  ASSERT_TRUE(reader.next(line));
+  EXPECT_EQ(line, "b");
+  EXPECT_FALSE(reader.next(line));
+}
+
+TEST(Csv, SplitCellsGivesEachCellAndItsColumn) {
+  std::vector<std::string_view> cells;
+  std::vector<int> starts;
+  split_cells("1,,22,x y", cells, starts);
+  EXPECT_EQ(cells, (std::vector<std::string_view>{"1", "", "22", "x y"}));
+  EXPECT_EQ(starts, (std::vector<int>{1, 3, 4, 7}));
+  split_cells("", cells, starts);
+  EXPECT_EQ(cells, (std::vector<std::string_view>{""}));
+  EXPECT_EQ(starts, (std::vector<int>{1}));
 }
 
 TEST(Csv, WritesHeaderRowsAndQuotesText) {
