@@ -170,7 +170,7 @@ TEST(CliInchworm, VssDmHumanReadable) {
 struct BadInput {
   std::vector<std::string> args;  ///< after `inchworm vss|trace`
   std::string option;             ///< must appear in the message
-  std::string text = "";          ///< and this too, if not empty
+  std::string text;               ///< and this too, if not empty
 };
 
 const std::vector<std::string> kModel = {"--force", "45", "--mu", "1"};
@@ -319,17 +319,25 @@ const std::vector<std::string> kMagnitudes = {"1e-320", "1e-30", "1e-12", "0",  
 /// The range of each numeric option (inchworm::ranges, the table validate() reads).
 core::Range range_of(const std::string& option) {
   namespace r = inchworm::ranges;
-  if (option == "--m" || option == "--M") return r::kMass;
-  if (option == "--L-min" || option == "--L-max") return r::kLength;
-  if (option == "--g") return r::kGravity;
-  if (option == "--mu" || option == "--mu-s") return r::kFriction;
-  if (option == "--force") return r::kForce;
-  if (option == "--alpha") return r::kAlpha;
-  if (option == "--rtol") return r::kRtol;
-  if (option == "--dt") return r::kSampleDt;
-  if (option == "--cycles") return r::kCycles;
-  if (option == "--max-strokes") return r::kMaxStrokes;
-  if (option == "--max-rows") return r::kMaxRows;
+  const std::vector<std::pair<std::string, core::Range>> table = {{"--m", r::kMass},
+                                                                  {"--M", r::kMass},
+                                                                  {"--L-min", r::kLength},
+                                                                  {"--L-max", r::kLength},
+                                                                  {"--g", r::kGravity},
+                                                                  {"--mu", r::kFriction},
+                                                                  {"--mu-s", r::kFriction},
+                                                                  {"--force", r::kForce},
+                                                                  {"--alpha", r::kAlpha},
+                                                                  {"--rtol", r::kRtol},
+                                                                  {"--dt", r::kSampleDt},
+                                                                  {"--cycles", r::kCycles},
+                                                                  {"--max-strokes", r::kMaxStrokes},
+                                                                  {"--max-rows", r::kMaxRows}};
+  for (const auto& [name, range] : table) {
+    if (name == option) {
+      return range;
+    }
+  }
   return r::kMaxSteps;
 }
 
@@ -368,7 +376,7 @@ TEST(CliInchworm, EveryNumericOptionAtEveryMagnitudeEndsQuicklyAndHonestly) {
   std::size_t k = 0;
   for (const std::string& option : options) {
     for (const std::string& value : kMagnitudes) {
-      const std::string method = methods[k++ % methods.size()];  // every method, in turn
+      const std::string& method = methods[k++ % methods.size()];  // every method, in turn
       std::vector<std::string> args = {"inchworm", "vss", "--force",  "45",   "--mu",  "1",
                                        "--model",  "dm",  "--method", method, "--json"};
       if (option != "--rtol" && method == "fixed_rk4") {
@@ -382,7 +390,8 @@ TEST(CliInchworm, EveryNumericOptionAtEveryMagnitudeEndsQuicklyAndHonestly) {
                    args.begin() + (option == "--force" ? 4 : 6));
       }
       args.insert(args.end(), {option, value});
-      const std::string what = option + " " + value + " --method " + method;
+      std::string what = option;
+      what.append(" ").append(value).append(" --method ").append(method);
       const CommandResult r = run_slipwalk(args);
       expect_bounded_outcome(r, option, value, what);
       if (r.exit_code == 2) {
@@ -412,7 +421,7 @@ TEST(CliInchworm, EveryTraceOptionAtEveryMagnitudeEndsQuicklyAndLeavesAFileOnlyO
   for (const std::string option :
        {"--force", "--m", "--L-max", "--dt", "--cycles", "--rtol", "--max-rows", "--max-steps"}) {
     for (const std::string& value : kMagnitudes) {
-      const std::string method = methods[k++ % methods.size()];
+      const std::string& method = methods[k++ % methods.size()];
       std::vector<std::string> args = {"inchworm", "trace", "--mu", "1", "--method", method};
       for (const auto& [name, base] : {std::pair<std::string, std::string>{"--force", "45"},
                                        {"--cycles", "1"},
@@ -425,7 +434,8 @@ TEST(CliInchworm, EveryTraceOptionAtEveryMagnitudeEndsQuicklyAndLeavesAFileOnlyO
         args.insert(args.end(), {"--rtol", "1e-4"});
       }
       args.insert(args.end(), {option, value, "--out", out});
-      const std::string what = std::string(option) + " " + value + " --method " + method;
+      std::string what = option;
+      what.append(" ").append(value).append(" --method ").append(method);
       const CommandResult r = run_slipwalk(args);
       expect_bounded_outcome(r, option, value, what);
       if (r.exit_code == 0) {
