@@ -170,7 +170,7 @@ TEST(CliInchworm, VssDmHumanReadable) {
 struct BadInput {
   std::vector<std::string> args;  ///< after `inchworm vss|trace`
   std::string option;             ///< must appear in the message
-  std::string text;               ///< and this too, if not empty
+  std::string text = "";          ///< and this too, if not empty
 };
 
 const std::vector<std::string> kModel = {"--force", "45", "--mu", "1"};
