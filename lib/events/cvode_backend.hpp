@@ -51,6 +51,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "events/guard_search.hpp"
 #include "events/hybrid_system.hpp"
 
@@ -100,9 +101,15 @@ class CvodeBackend {
     guards_ = &flow_guards<N, G>;
     start_segment(2 * N, G, t0, x.data(), t_end);
     double t_lo = t0;
+    long long taken = 0;  // this segment's steps (stats_.steps is updated at its end)
     while (true) {
       double t_hi = t_lo;
       const bool at_end = step(t_end, t_hi);
+      ++taken;
+      if (options_.max_steps > 0 && stats_.steps + taken > options_.max_steps) {
+        finish_segment();
+        throw core::ComputationError(step_budget_message(kName, options_.max_steps));
+      }
       const State<N> y_hi = Eigen::Map<const State<N>>(returned_state());
       const State<N> dy_hi = Eigen::Map<const State<N>>(interpolate(t_hi, 1));
       // The step-end test on [t_lo, t_hi], CVODE's interpolant giving g and dg/dt inside.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/error.hpp"
 #include "events/hybrid_system.hpp"
 
 namespace slipwalk::events {
@@ -28,12 +29,16 @@ template <int N>
 class ExactBackend {
  public:
   static constexpr const char* kName = "analytic";
-  explicit ExactBackend(const BackendOptions& /*unused*/ = {}) {}
+  /// Only BackendOptions::max_steps applies (a budget of segments).
+  explicit ExactBackend(const BackendOptions& options = {}) : max_steps_(options.max_steps) {}
 
   /// Advances x from t0 in the mode `flow` until its first guard fires or t_end.
   template <int N, int G, class Observer = NoStepObserver>
   SegmentEnd advance(const ModeFlow<N, G>& flow, double t0, State<N>& x, double t_end,
                      Observer&& observe = {}) {
+    if (max_steps_ > 0 && stats_.steps >= max_steps_) {
+      throw core::ComputationError(step_budget_message(kName, max_steps_));
+    }
     ++stats_.segments;
     double tau_min = t_end - t0;
     int fired = -1;
@@ -75,6 +80,7 @@ class ExactBackend {
 
  private:
   BackendStats stats_;
+  long long max_steps_ = 0;
   double sample_interval_ = 0.0;
 };
 

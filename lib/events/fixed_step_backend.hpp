@@ -18,6 +18,7 @@
 //    backends): a guard that is ≥ 0 and rising fires at t0 without a step; any other guard ≥ 0
 //    at t0 must first fall below zero.
 //  - The last step of a segment is shortened to land on t_end.
+//  - A non-finite state ends the run (core::ComputationError) at the step that produced it.
 //  - BackendOptions::max_steps (> 0) caps the steps over the backend's life: a run that would
 //    take more throws core::ComputationError (a budget, so that a study can ask for tiny steps
 //    without running for hours; the failure is recorded, not hidden).
@@ -72,6 +73,10 @@ class FixedStepBackend {
       }
       rk4_step(flow, x, dx, t - t_prev);
       ++stats_.steps;
+      if (!all_finite(x)) {
+        throw core::ComputationError("fixed_rk4: the state is not finite at t = " +
+                                     std::to_string(t));
+      }
       dx = field(flow, x);  // the next step's first stage
       int fired = -1;
       for (int g = 0; g < flow.n_guards; ++g) {

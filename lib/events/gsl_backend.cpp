@@ -90,6 +90,9 @@ void GslBackend::start_segment(int n_state, const double* x0) {
 }
 
 void GslBackend::step(double& t, double t_end) {
+  if (options_.max_steps > 0 && stats_.steps >= options_.max_steps) {
+    throw core::ComputationError(step_budget_message(kName, options_.max_steps));
+  }
   std::copy(y_.begin(), y_.end(), y_start_.begin());
   const double t_before = t;
   const int status = gsl_odeiv2_evolve_apply(driver_->e, driver_->c, driver_->s,

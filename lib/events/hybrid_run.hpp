@@ -2,6 +2,7 @@
 // The event loop shared by every backend: integrate the current mode until a guard fires, apply
 // the system's reset, tell the observer, repeat. The backend only integrates one mode at a time,
 // so all backends see exactly the same modes, guards and resets.
+#include <cmath>
 #include <string>
 
 #include "events/hybrid_system.hpp"
@@ -65,6 +66,12 @@ RunSummary run_hybrid(const System& system, Backend& backend, double& t,
       return summary;
     }
     t = end.t;
+    // A state that blew up (every guard NaN) would otherwise integrate on to t_end.
+    if (!std::isfinite(t) || !all_finite(x)) {
+      summary.status = RunStatus::kBackendFailure;
+      summary.message = "the state became non-finite at t = " + std::to_string(t);
+      return summary;
+    }
     if (end.guard < 0) {
       summary.status = RunStatus::kTimeLimit;
       return summary;

@@ -12,7 +12,9 @@
 // guards numerically, so results and costs compare like for like.
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <concepts>
+#include <string>
 
 namespace slipwalk::events {
 
@@ -59,12 +61,28 @@ concept PiecewiseConstantAccelerationSystem = requires(const S& sys, typename S:
 
 /// Tolerances shared by the numeric backends. The exact backend ignores them.
 struct BackendOptions {
-  double rtol = 1e-10;      ///< relative tolerance of the ODE steps
-  double atol = 1e-12;      ///< absolute tolerance of the ODE steps
-  double event_tol = 0.0;   ///< s, time tolerance of guard location; 0 = 4ε·max(1, |t|)
-  double step = 0.0;        ///< s, the step of FixedStepBackend (> 0 there; others ignore it)
-  long long max_steps = 0;  ///< FixedStepBackend: fail after this many steps in all; 0 = no limit
+  double rtol = 1e-10;     ///< relative tolerance of the ODE steps
+  double atol = 1e-12;     ///< absolute tolerance of the ODE steps
+  double event_tol = 0.0;  ///< s, time tolerance of guard location; 0 = 4ε·max(1, |t|)
+  double step = 0.0;       ///< s, the step of FixedStepBackend (> 0 there; others ignore it)
+  /// Every backend: fail (core::ComputationError, "step budget ... used up") once it has taken
+  /// this many accepted steps in all (the exact backend counts segments); 0 = no limit. A
+  /// counter compare per step: what keeps a run whose step count the input sets (a tiny fixed
+  /// step, a guard a fixed step misses) from running without end.
+  long long max_steps = 0;
 };
+
+/// The message of a used-up step budget (FixedStepBackend has its own, with its step size).
+[[nodiscard]] inline std::string step_budget_message(const char* backend, long long max_steps) {
+  return std::string(backend) + ": step budget of " + std::to_string(max_steps) + " steps used up";
+}
+
+/// True when all of x is finite. A sum is NaN or ±inf iff some term is (or the terms are near
+/// overflow, which is a blow-up too): one reduction and one compare per accepted step.
+template <class Vector>
+[[nodiscard]] inline bool all_finite(const Vector& x) {
+  return std::isfinite(x.sum());
+}
 
 /// Work counters of one backend; summed over all segments it integrated.
 struct BackendStats {

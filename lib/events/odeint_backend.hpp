@@ -265,11 +265,17 @@ class OdeintBackend {
       } catch (const std::exception& e) {
         throw core::ComputationError(std::string("odeint: ") + e.what());
       }
+      if (options_.max_steps > 0 && stats_.steps >= options_.max_steps) {
+        throw core::ComputationError(step_budget_message(kName, options_.max_steps));
+      }
       ++stats_.steps;
       const Array<N>& y_hi = steps.y_hi;
       if (!std::all_of(y_hi.begin(), y_hi.end(), [](double v) { return std::isfinite(v); })) {
         throw core::ComputationError("odeint: the state is not finite at t = " +
                                      std::to_string(span.t_hi));
+      }
+      if (!(span.t_hi > span.t_lo)) {  // a step shrunk to nothing would repeat forever
+        throw core::ComputationError("odeint: no progress at t = " + std::to_string(span.t_lo));
       }
       // The step-end test on [t_lo, t_hi], the stepper's state inside giving g and dg/dt.
       double t_event = std::numeric_limits<double>::infinity();

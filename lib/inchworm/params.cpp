@@ -4,6 +4,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/range.hpp"
 
 namespace slipwalk::inchworm {
 
@@ -17,29 +18,25 @@ std::string num(double v) { return core::format_double(v); }
 }  // namespace
 
 void validate(const Params& p) {
-  const std::pair<const char*, double> finite[] = {
-      {"--m", p.m}, {"--M", p.M},   {"--L-min", p.L_min}, {"--L-max", p.L_max},
-      {"--g", p.g}, {"--mu", p.mu}, {"--force", p.F}};
-  for (const auto& [name, value] : finite) {
-    require(std::isfinite(value), name, "must be a finite number, got " + num(value));
-  }
-  require(p.m > 0.0, "--m", "the small mass must be positive, got " + num(p.m));
+  core::require_in("--m", p.m, ranges::kMass);
+  core::require_in("--M", p.M, ranges::kMass);
   require(p.M > p.m, "--M",
           "the large mass must exceed the small mass m = " + num(p.m) + " kg, got " + num(p.M));
-  require(p.L_min > 0.0, "--L-min", "must be positive, got " + num(p.L_min));
+  core::require_in("--L-min", p.L_min, ranges::kLength);
+  core::require_in("--L-max", p.L_max, ranges::kLength);
   require(p.L_max > p.L_min, "--L-max",
           "must exceed L_min = " + num(p.L_min) + " m, got " + num(p.L_max));
-  require(p.g > 0.0, "--g", "must be positive, got " + num(p.g));
-  require(p.mu > 0.0, "--mu", "the friction coefficient must be positive, got " + num(p.mu));
+  core::require_in("--g", p.g, ranges::kGravity);
+  core::require_in("--mu", p.mu, ranges::kFriction);
   if (!std::isnan(p.mu_s)) {
-    require(std::isfinite(p.mu_s), "--mu-s", "must be a finite number, got " + num(p.mu_s));
+    core::require_in("--mu-s", p.mu_s, ranges::kFriction);
     require(p.mu_s >= p.mu, "--mu-s",
             "the static coefficient must be at least mu = " + num(p.mu) + ", got " + num(p.mu_s));
   }
   if (p.model == SwapModel::kMass) {
-    require(std::isfinite(p.alpha) && p.alpha > 0.0, "--alpha",
-            "the swap force factor must be a positive number, got " + num(p.alpha));
+    core::require_in("--alpha", p.alpha, ranges::kAlpha);
   }
+  core::require_in("--force", p.F, ranges::kForce);
   const double threshold = p.static_mu() * p.m * p.g;
   require(p.F > threshold, "--force",
           "F = " + num(p.F) + " N does not exceed mu_s*m*g = " + num(threshold) +

@@ -2,9 +2,13 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
 #include <utility>
 
 #include "core/clock.hpp"
+#include "core/csv.hpp"
 #include "core/error.hpp"
 #include "events/exact_event_times.hpp"
 #include "inchworm/backends.hpp"
@@ -73,6 +77,37 @@ VssResult simulate(const Params& p, Method method, const VssOptions& opt, Backen
   return r;
 }
 
+/// A number for a message: three significant digits.
+std::string approx(double v) {
+  std::array<char, 32> buf{};
+  (void)std::snprintf(buf.data(), buf.size(), "%.3g", v);
+  return buf.data();
+}
+
+/// A converged result must be made of numbers: the first non-finite one makes it not converged,
+/// saying which. A simulation's contraction may be NaN (its differences reached the noise
+/// floor: not estimable), never infinite.
+void refuse_non_finite(Method method, VssResult& r) {
+  if (!r.converged) {
+    return;
+  }
+  const bool nan_contraction_ok = is_simulation(method) && std::isnan(r.contraction);
+  const std::pair<const char*, double> values[] = {
+      {"v_ss", r.v_ss},
+      {"period", r.period},
+      {"c0", r.c0},
+      {"est_error", r.est_error},
+      {"contraction", nan_contraction_ok ? 0.0 : r.contraction}};
+  for (const auto& [name, value] : values) {
+    if (!std::isfinite(value)) {
+      r.converged = false;
+      r.message = std::string(name) + " became non-finite (" + core::format_double(value) +
+                  "): the parameters are beyond what double precision resolves";
+      return;
+    }
+  }
+}
+
 }  // namespace
 
 std::optional<Method> parse_method(std::string_view name) {
@@ -104,8 +139,36 @@ events::BackendOptions backend_options(const VssOptions& opt) {
   bo.atol = opt.rtol * 1e-2;  // 1 cm: the scale of the inchworm's lengths
   bo.event_tol = opt.event_tol;
   bo.step = opt.step > 0.0 ? opt.step : opt.rtol;
-  bo.max_steps = opt.max_steps;
+  bo.max_steps = opt.max_steps > 0 ? opt.max_steps : kDefaultMaxSteps;
   return bo;
+}
+
+double steady_period(const Params& p) {
+  try {
+    const double period = p.model == SwapModel::kMass ? dm_steady_state(p).period
+                                                      : steady_state_closed_form(p).period;
+    return std::isfinite(period) && period > 0.0 ? period : std::nan("");
+  } catch (const std::exception&) {
+    return std::nan("");
+  }
+}
+
+void check_fixed_step_budget(const Params& p, Method method, const VssOptions& opt, double strokes,
+                             const char* option) {
+  if (method != Method::kFixedRk4) {
+    return;
+  }
+  const events::BackendOptions bo = backend_options(opt);
+  const double period = steady_period(p);
+  const double steps = strokes * period / bo.step;
+  if (std::isfinite(period) && steps > static_cast<double>(bo.max_steps)) {
+    throw core::InputError(
+        option, "fixed_rk4's step h = " + core::format_double(bo.step) + " s takes about " +
+                    approx(period / bo.step) + " steps per stroke (period " + approx(period) +
+                    " s), about " + approx(steps) + " for " + approx(strokes) +
+                    " strokes: more than the step budget of " + std::to_string(bo.max_steps) +
+                    " (raise the step or --max-steps)");
+  }
 }
 
 VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
@@ -144,6 +207,7 @@ VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
     r.converged = false;
     r.message = e.what();
   }
+  refuse_non_finite(method, r);
   r.wall_s = core::seconds_since(start);
   r.cpu_s = core::thread_cpu_seconds() - cpu_start;
   return r;

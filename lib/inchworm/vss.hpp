@@ -41,9 +41,11 @@ struct VssOptions {
   StopRule stop = StopRule::kEstimatedError;
   Estimator estimator = Estimator::kCycleAverage;
   long long max_strokes = 4'000'000;
-  double event_tol = 0.0;   ///< s, guard location tolerance; 0 = 4ε·max(1, |t|)
-  double step = 0.0;        ///< s, fixed_rk4's step; 0 = rtol s
-  long long max_steps = 0;  ///< fixed_rk4: fail after this many steps; 0 = no limit
+  double event_tol = 0.0;  ///< s, guard location tolerance; 0 = 4ε·max(1, |t|)
+  double step = 0.0;       ///< s, fixed_rk4's step; 0 = rtol s
+  /// Integrators: fail (not converged, "step budget ... used up") after this many accepted
+  /// steps in all; 0 = kDefaultMaxSteps (params.hpp, where the choice is argued).
+  long long max_steps = 0;
   /// Integration error only: the events at the exact times (events::ExactEventTimes; a study
   /// of error sources, not a method).
   bool exact_event_times = false;
@@ -71,7 +73,20 @@ struct VssResult {
 };
 
 /// Solves for v_ss. Parameters must be valid (see validate()); numerical trouble is reported in
-/// the result (converged = false, message), never thrown.
+/// the result (converged = false, message), never thrown. A result whose v_ss, period, c0,
+/// est_error or contraction is not finite is never converged (a simulation's contraction may be
+/// NaN: not estimable once its differences reach the noise floor).
 [[nodiscard]] VssResult solve_vss(const Params& p, Method method, const VssOptions& opt = {});
+
+/// The steady stroke period (s) by the closed form (instant swap: §2.4; dm: half the cycle of
+/// the cycle map's fixed point, §2.5), or NaN where it has none: the time scale for estimating
+/// a run's steps and a trace's rows before starting.
+[[nodiscard]] double steady_period(const Params& p);
+
+/// fixed_rk4 only: throws core::InputError naming `option` (the option that set the step) when
+/// `strokes` steady strokes at the step backend_options(opt).step would take more steps than
+/// the budget (VssOptions::max_steps): a run refused up front instead of failing after seconds.
+void check_fixed_step_budget(const Params& p, Method method, const VssOptions& opt, double strokes,
+                             const char* option);
 
 }  // namespace slipwalk::inchworm

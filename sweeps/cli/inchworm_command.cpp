@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/range.hpp"
 #include "inchworm/params.hpp"
 #include "inchworm/trace.hpp"
 #include "inchworm/trace_file.hpp"
@@ -138,10 +139,27 @@ inchworm::Method parse_method(const std::string& name) {
 
 double parse_rtol(const std::string& text) {
   const double rtol = parse_number("--rtol", text);
-  if (!(rtol > 0.0 && rtol < 1.0)) {
-    throw InputError("--rtol", "must be in (0, 1), got '" + text + "'");
-  }
+  core::require_in("--rtol", rtol, inchworm::ranges::kRtol);
   return rtol;
+}
+
+/// An integer option within `range` (inchworm::ranges), the message stating it.
+long long parse_count(const std::string& option, const std::string& text,
+                      const core::Range& range) {
+  const long long n = parse_integer(option, text);
+  core::require_in(option, static_cast<double>(n), range);
+  return n;
+}
+
+/// The library's message of a run that hit a bound, with the option that raises it.
+std::string with_hint(const std::string& message) {
+  if (message.find("step budget") != std::string::npos) {
+    return message + " (raise --max-steps)";
+  }
+  if (message.find("no convergence within") != std::string::npos) {
+    return message + " (raise --max-strokes)";
+  }
+  return message;
 }
 
 struct VssCommand {
@@ -151,6 +169,7 @@ struct VssCommand {
   std::string stop = "estimate";
   std::string estimator = "cycle";
   std::string max_strokes = "4000000";
+  std::string max_steps = std::to_string(inchworm::kDefaultMaxSteps);
   bool json = false;
 
   void run(const CLI::App& app) const {
@@ -174,10 +193,10 @@ struct VssCommand {
       throw InputError("--estimator",
                        "unknown estimator '" + estimator + "'; expected cycle|running");
     }
-    opt.max_strokes = parse_integer("--max-strokes", max_strokes);
-    if (opt.max_strokes < 8 || opt.max_strokes > 1'000'000'000LL) {
-      throw InputError("--max-strokes", "must be from 8 to 1e9, got '" + max_strokes + "'");
-    }
+    opt.max_strokes = parse_count("--max-strokes", max_strokes, inchworm::ranges::kMaxStrokes);
+    opt.max_steps = parse_count("--max-steps", max_steps, inchworm::ranges::kMaxSteps);
+    // fixed_rk4 (step h = rtol s): the 8 strokes a solve takes at least must fit the budget.
+    inchworm::check_fixed_step_budget(p, m, opt, 8.0, "--rtol");
 
     gsl_set_error_handler_off();
     const inchworm::VssResult r = inchworm::solve_vss(p, m, opt);
@@ -188,7 +207,7 @@ struct VssCommand {
     }
     if (!r.converged) {
       throw core::ComputationError(std::string("inchworm vss --method ") +
-                                   inchworm::method_name(m) + ": " + r.message);
+                                   inchworm::method_name(m) + ": " + with_hint(r.message));
     }
   }
 };
@@ -199,22 +218,23 @@ struct TraceCommand {
   std::string cycles = "6";
   std::string dt = "1e-3";
   std::string rtol = "1e-10";
+  std::string max_rows = std::to_string(inchworm::kDefaultMaxRows);
+  std::string max_steps = std::to_string(inchworm::kDefaultMaxSteps);
   std::string out;
 
   void run(const CLI::App& app) const {
     const inchworm::Params p = params.params(app);
     const inchworm::Method m = parse_method(method);
     inchworm::TraceOptions opt;
-    const long long n = parse_integer("--cycles", cycles);
-    if (n < 1 || n > 10000) {
-      throw InputError("--cycles", "must be from 1 to 10000, got '" + cycles + "'");
-    }
-    opt.cycles = static_cast<int>(n);
+    opt.cycles = static_cast<int>(parse_count("--cycles", cycles, inchworm::ranges::kCycles));
     opt.sample_dt = parse_number("--dt", dt);
-    if (!(opt.sample_dt > 0.0)) {
-      throw InputError("--dt", "must be positive, got '" + dt + "'");
-    }
+    core::require_in("--dt", opt.sample_dt, inchworm::ranges::kSampleDt);
     opt.rtol = parse_rtol(rtol);
+    opt.max_rows = parse_count("--max-rows", max_rows, inchworm::ranges::kMaxRows);
+    opt.max_steps = parse_count("--max-steps", max_steps, inchworm::ranges::kMaxSteps);
+    // Refused before a byte is written: more rows than --max-rows, or more fixed steps than
+    // --max-steps, by the closed-form estimate.
+    inchworm::check_trace_size(p, m, opt);
     if (out != "-") {
       core::check_output_path(out, "--out");
     }
@@ -246,7 +266,8 @@ void add_inchworm_command(CLI::App& app) {
                     inchworm::method_names())
       ->type_name("NAME");
   v->add_option("--rtol", vss->rtol,
-                "integrators: step tolerance and convergence target, in (0, 1) (default 1e-10)")
+                "integrators: step tolerance and convergence target, in [1e-15, 1) (default "
+                "1e-10; fixed_rk4: its step in s)")
       ->type_name("NUMBER");
   v->add_option("--stop", vss->stop,
                 "integrators: estimate (remaining-error estimate, default) | difference "
@@ -257,6 +278,10 @@ void add_inchworm_command(CLI::App& app) {
       ->type_name("NAME");
   v->add_option("--max-strokes", vss->max_strokes,
                 "integrators: give up (exit 1) after this many strokes (default 4000000)")
+      ->type_name("INT");
+  v->add_option("--max-steps", vss->max_steps,
+                "integrators: give up (exit 1) after this many steps, 1 to 1e15 (default " +
+                    std::to_string(inchworm::kDefaultMaxSteps) + ")")
       ->type_name("INT");
   v->add_flag("--json", vss->json, "print one JSON object");
   v->callback([vss, v] { vss->run(*v); });
@@ -270,10 +295,22 @@ void add_inchworm_command(CLI::App& app) {
       ->type_name("NAME");
   t->add_option("--cycles", trace->cycles, "cycles (two strokes each), 1 to 10000 (default 6)")
       ->type_name("INT");
-  t->add_option("--dt", trace->dt, "sampling interval of the exact method in s (default 1e-3)")
+  t->add_option("--dt", trace->dt,
+                "sampling interval in s, 1e-9 to 1000 (default 1e-3): the exact method samples "
+                "on this grid, integrators write their first step at or after each grid time")
       ->type_name("NUMBER");
-  t->add_option("--rtol", trace->rtol, "integrators' tolerance, in (0, 1) (default 1e-10)")
+  t->add_option("--rtol", trace->rtol,
+                "integrators' tolerance, in [1e-15, 1) (default 1e-10; fixed_rk4: its step in s)")
       ->type_name("NUMBER");
+  t->add_option("--max-rows", trace->max_rows,
+                "refuse (exit 2, by an estimate) or stop (exit 1) past this many rows, 1 to 1e9 "
+                "(default " +
+                    std::to_string(inchworm::kDefaultMaxRows) + ", ~1.7 GB)")
+      ->type_name("INT");
+  t->add_option("--max-steps", trace->max_steps,
+                "integrators: give up (exit 1) after this many steps, 1 to 1e15 (default " +
+                    std::to_string(inchworm::kDefaultMaxSteps) + ")")
+      ->type_name("INT");
   t->add_option("--out", trace->out, "CSV file to write, - for stdout")
       ->type_name("FILE")
       ->required();

@@ -142,8 +142,9 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
     return in;
   }
   in.opt.rtol = r.number("rtol", in.opt.rtol);
-  if (!(in.opt.rtol > 0.0 && in.opt.rtol < 1.0)) {
-    r.fail("rtol", "must be in (0, 1), got " + core::format_double(in.opt.rtol));
+  if (!inchworm::ranges::kRtol.contains(in.opt.rtol)) {
+    r.fail("rtol", "must be in " + inchworm::ranges::kRtol.describe() + ", got " +
+                       core::format_double(in.opt.rtol));
   }
   if (const auto stop = r.text("stop")) {
     if (*stop == "estimate") {
@@ -181,8 +182,9 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
     if (in.method != Method::kFixedRk4) {
       r.fail("h", "only used with method = \"fixed_rk4\" (the fixed step in s)");
     }
-    if (!(*h > 0.0 && *h < 1.0)) {
-      r.fail("h", "the fixed step must be in (0, 1) s, got " + core::format_double(*h));
+    if (!inchworm::ranges::kFixedStep.contains(*h)) {
+      r.fail("h", "the fixed step must be in " + inchworm::ranges::kFixedStep.describe() +
+                      ", got " + core::format_double(*h));
     }
     in.opt.step = *h;
   }

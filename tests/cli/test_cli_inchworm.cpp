@@ -2,12 +2,16 @@
 // with exit code 2, a message naming the option and no output file.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "cli/command.hpp"
+#include "core/range.hpp"
 #include "inchworm/closed_form.hpp"
 #include "inchworm/params.hpp"
 
@@ -308,4 +312,170 @@ TEST(CliInchworm, UsageErrorsExit2) {
 }
 
 }  // namespace
+/// The hostile magnitudes of a numeric option, as a user types them.
+const std::vector<std::string> kMagnitudes = {"1e-320", "1e-30", "1e-12", "0",   "-1",
+                                              "1e12",   "1e30",  "1e308", "inf", "nan"};
+
+/// The range of each numeric option (inchworm::ranges, the table validate() reads).
+core::Range range_of(const std::string& option) {
+  namespace r = inchworm::ranges;
+  const std::vector<std::pair<std::string, core::Range>> table = {{"--m", r::kMass},
+                                                                  {"--M", r::kMass},
+                                                                  {"--L-min", r::kLength},
+                                                                  {"--L-max", r::kLength},
+                                                                  {"--g", r::kGravity},
+                                                                  {"--mu", r::kFriction},
+                                                                  {"--mu-s", r::kFriction},
+                                                                  {"--force", r::kForce},
+                                                                  {"--alpha", r::kAlpha},
+                                                                  {"--rtol", r::kRtol},
+                                                                  {"--dt", r::kSampleDt},
+                                                                  {"--cycles", r::kCycles},
+                                                                  {"--max-strokes", r::kMaxStrokes},
+                                                                  {"--max-rows", r::kMaxRows}};
+  for (const auto& [name, range] : table) {
+    if (name == option) {
+      return range;
+    }
+  }
+  return r::kMaxSteps;
+}
+
+/// What any command line of `inchworm vss|trace` may end with: exit 0, exit 2 naming the option
+/// (a value out of its range: the option itself, and its range when the value is a number), or
+/// exit 1 with a message; nothing else.
+void expect_bounded_outcome(const CommandResult& r, const std::string& option,
+                            const std::string& value, const std::string& what) {
+  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1 || r.exit_code == 2) << what << "\n" << r.err;
+  if (r.exit_code != 0) {
+    EXPECT_EQ(r.err.rfind("slipwalk: error: ", 0), 0U) << what << "\n" << r.err;
+  }
+  const double v = std::strtod(value.c_str(), nullptr);
+  const core::Range range = range_of(option);
+  if (!range.contains(v)) {
+    EXPECT_EQ(r.exit_code, 2) << what << "\n" << r.err;
+    EXPECT_NE(r.err.find(option + ": "), std::string::npos) << what << "\n" << r.err;
+    // Integer options refuse "1e12" as not an integer; a plain integer gets the range.
+    const bool integer = option == "--cycles" || option.starts_with("--max");
+    const bool plain = value.find_first_not_of("-0123456789") == std::string::npos;
+    if (std::isfinite(v) && (!integer || plain)) {
+      EXPECT_NE(r.err.find("must be in " + range.describe()), std::string::npos) << what << "\n"
+                                                                                 << r.err;
+    }
+  }
+}
+
+TEST(CliInchworm, EveryNumericOptionAtEveryMagnitudeEndsQuicklyAndHonestly) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::string> methods = {"exact",     "rootfind",    "analytic",  "cvode",
+                                            "odeint",    "gsl",         "cvode_bdf", "odeint_rkf78",
+                                            "gsl_rkf45", "gsl_msadams", "fixed_rk4"};
+  const std::vector<std::string> options = {"--force", "--mu",    "--mu-s",        "--m",
+                                            "--M",     "--L-min", "--L-max",       "--g",
+                                            "--alpha", "--rtol",  "--max-strokes", "--max-steps"};
+  std::size_t k = 0;
+  for (const std::string& option : options) {
+    for (const std::string& value : kMagnitudes) {
+      const std::string& method = methods[k++ % methods.size()];  // every method, in turn
+      std::vector<std::string> args = {"inchworm", "vss", "--force",  "45",   "--mu",  "1",
+                                       "--model",  "dm",  "--method", method, "--json"};
+      if (option != "--rtol" && method == "fixed_rk4") {
+        args.insert(args.end(), {"--rtol", "1e-3"});  // a 1 ms step
+      }
+      if (option != "--max-strokes") {
+        args.insert(args.end(), {"--max-strokes", "2000"});
+      }
+      if (option == "--force" || option == "--mu") {
+        args.erase(args.begin() + (option == "--force" ? 2 : 4),
+                   args.begin() + (option == "--force" ? 4 : 6));
+      }
+      args.insert(args.end(), {option, value});
+      std::string what = option;
+      what.append(" ").append(value).append(" --method ").append(method);
+      const CommandResult r = run_slipwalk(args);
+      expect_bounded_outcome(r, option, value, what);
+      if (r.exit_code == 2) {
+        continue;
+      }
+      // A printed result: never converged with a non-finite number (JSON null).
+      const auto j = nlohmann::json::parse(r.out);
+      if (j.at("converged").get<bool>()) {
+        EXPECT_EQ(r.exit_code, 0) << what;
+        for (const char* key : {"v_ss", "period", "c0", "est_error"}) {
+          EXPECT_TRUE(j.at(key).is_number()) << what << " " << key << "\n" << r.out;
+        }
+      } else {
+        EXPECT_EQ(r.exit_code, 1) << what;
+      }
+    }
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+}
+
+TEST(CliInchworm, EveryTraceOptionAtEveryMagnitudeEndsQuicklyAndLeavesAFileOnlyOnSuccess) {
+  const auto start = std::chrono::steady_clock::now();
+  const ScratchDir dir;
+  const auto out = (dir / "trace.csv").string();
+  const std::vector<std::string> methods = {"analytic", "cvode", "odeint", "gsl", "fixed_rk4"};
+  std::size_t k = 0;
+  for (const std::string option :
+       {"--force", "--m", "--L-max", "--dt", "--cycles", "--rtol", "--max-rows", "--max-steps"}) {
+    for (const std::string& value : kMagnitudes) {
+      const std::string& method = methods[k++ % methods.size()];
+      std::vector<std::string> args = {"inchworm", "trace", "--mu", "1", "--method", method};
+      for (const auto& [name, base] : {std::pair<std::string, std::string>{"--force", "45"},
+                                       {"--cycles", "1"},
+                                       {"--dt", "0.01"}}) {
+        if (name != option) {
+          args.insert(args.end(), {name, base});
+        }
+      }
+      if (std::string(option) != "--rtol" && method == "fixed_rk4") {
+        args.insert(args.end(), {"--rtol", "1e-4"});
+      }
+      args.insert(args.end(), {option, value, "--out", out});
+      std::string what = option;
+      what.append(" ").append(value).append(" --method ").append(method);
+      const CommandResult r = run_slipwalk(args);
+      expect_bounded_outcome(r, option, value, what);
+      if (r.exit_code == 0) {
+        const std::string text = read_text(out);
+        EXPECT_EQ(text.find("nan"), std::string::npos) << what;
+        EXPECT_EQ(text.find("inf"), std::string::npos) << what;
+        EXPECT_EQ(files_under(dir.path()), std::vector<std::string>{"trace.csv"}) << what;
+        std::filesystem::remove(out);
+      } else {
+        EXPECT_TRUE(files_under(dir.path()).empty()) << what;  // no file, no temporary
+      }
+    }
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+}
+
+TEST(CliInchworm, ARangeRefusalStatesTheRangeAndTheBoundsSayHowToRaiseThem) {
+  const CommandResult m =
+      run_slipwalk(concat({"inchworm", "vss"}, concat(kModel, {"--m", "1e-320"})));
+  EXPECT_EQ(m.exit_code, 2);
+  EXPECT_NE(m.err.find("--m: must be in [1e-06, 1000000] kg"), std::string::npos) << m.err;
+  const CommandResult rk4 = run_slipwalk(
+      concat({"inchworm", "vss"},
+             concat(kModel, {"--method", "fixed_rk4", "--rtol", "1e-14", "--max-strokes", "8"})));
+  EXPECT_EQ(rk4.exit_code, 2);
+  EXPECT_NE(rk4.err.find("--rtol"), std::string::npos) << rk4.err;
+  EXPECT_NE(rk4.err.find("--max-steps"), std::string::npos) << rk4.err;
+  const CommandResult strokes = run_slipwalk(
+      concat({"inchworm", "vss"}, {"--force", "73.575", "--mu", "0.05", "--method", "fixed_rk4",
+                                   "--rtol", "1e-4", "--max-strokes", "8"}));
+  EXPECT_EQ(strokes.exit_code, 1);
+  EXPECT_NE(strokes.err.find("no convergence within 8 strokes (raise --max-strokes)"),
+            std::string::npos)
+      << strokes.err;
+  const CommandResult rows = run_slipwalk(concat(
+      {"inchworm", "trace"}, concat(kModel, {"--dt", "1e-7", "--cycles", "100", "--out", "-"})));
+  EXPECT_EQ(rows.exit_code, 2);
+  EXPECT_EQ(rows.out, "");
+  EXPECT_NE(rows.err.find("--dt"), std::string::npos) << rows.err;
+  EXPECT_NE(rows.err.find("--max-rows"), std::string::npos) << rows.err;
+}
+
 }  // namespace slipwalk::testing
