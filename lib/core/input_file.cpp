@@ -42,6 +42,14 @@ std::string read_input_file(const std::filesystem::path& path, std::string_view 
   if (status.type() == std::filesystem::file_type::directory) {
     throw InputError(source, "is a folder, not " + std::string(what));
   }
+  // Opening a named pipe waits for a writer that may never come; a socket cannot be opened.
+  if (status.type() == std::filesystem::file_type::fifo ||
+      status.type() == std::filesystem::file_type::socket) {
+    throw InputError(
+        source, std::string("is a ") +
+                    (status.type() == std::filesystem::file_type::fifo ? "named pipe" : "socket") +
+                    ", not " + std::string(what));
+  }
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in) {

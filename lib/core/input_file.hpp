@@ -23,7 +23,8 @@ inline constexpr std::size_t kInputMaxBytes = std::size_t{64} << 20;
                                             std::string_view what,
                                             std::size_t max_bytes = kInputMaxBytes);
 
-/// The text of the file at `path`: InputError(path, ...) when it does not exist, is a folder,
+/// The text of the file at `path`: InputError(path, ...) when it does not exist, is a folder, a
+/// named pipe or a socket,
 /// cannot be opened or read (the system's reason is given), or is longer than `max_bytes`.
 [[nodiscard]] std::string read_input_file(const std::filesystem::path& path, std::string_view what,
                                           std::size_t max_bytes = kInputMaxBytes);

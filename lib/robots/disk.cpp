@@ -28,7 +28,7 @@ Walker disk_robot(const DiskGait& gait) {
                            "must be in [3, 1000], got " + std::to_string(gait.legs));
   }
   // Feet reach 1.1 R from the centre, inside contact::limits::kPosition.
-  detail::require_in("disk_robot.radius", gait.radius, core::closed(1e-2, 1e2, "m"));
+  detail::require_in("disk_robot.radius", gait.radius, kDiskRadius);
   detail::require_in("disk_robot.frequency", gait.frequency, detail::kFrequency);
 
   const int n = gait.legs;

@@ -3,6 +3,7 @@
 // options (core::InputError naming the option on a bad value) and returns a Walker.
 #include <numbers>
 
+#include "core/range.hpp"
 #include "robots/walker.hpp"
 
 namespace slipwalk::robots {
@@ -73,9 +74,13 @@ struct TrotGait {
 
 /// An N-leg disk robot (legs equally spaced on a rim) for scaling studies, with a simple gait
 /// (each foot on a small ellipse, phases spread around the rim; robots/disk.cpp).
+/// The disk robot's rim radius: its feet reach 1.1 R from the centre, inside
+/// contact::limits::kPosition, and at 1 cm the feet are still apart in double precision.
+inline constexpr core::Range kDiskRadius = core::closed(1e-2, 1e2, "m");
+
 struct DiskGait {
   int legs = 6;            ///< N ≥ 3 (≤ 1000)
-  double radius = 0.3;     ///< m, rim radius; valid: > 0
+  double radius = 0.3;     ///< m, rim radius; valid: kDiskRadius
   double frequency = 1.0;  ///< Hz; valid: > 0
 };
 [[nodiscard]] Walker disk_robot(const DiskGait& gait = {});

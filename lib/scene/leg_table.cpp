@@ -127,7 +127,12 @@ LegTableGait read_leg_table(const TableReader& robot, const TableReader& gait,
           leg.number_in(*xyz->get(static_cast<std::size_t>(i)), "hip", ranges::kCoordinate);
     }
     spec.K = leg.number_in(leg.required("K"), "K", ranges::kStiffness);
-    leg.read_in("mu", ranges::kFrictionCoefficient, spec.mu);
+    if (const toml::node* mu = leg.find("mu")) {
+      spec.mu = leg.number_in(*mu, "mu", ranges::kFrictionCoefficient);
+      leg.check(spec.mu == 0.0 || contact::limits::kFriction.contains(spec.mu), *mu, "mu",
+                "must be 0 or in " + contact::limits::kFriction.describe() + ", got " +
+                    core::format_double(spec.mu));
+    }
     leg.read_in("phase", ranges::kPhase, spec.phase);
     g.legs.push_back(spec);
   }

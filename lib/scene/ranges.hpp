@@ -12,7 +12,10 @@
 // positive one about 1e-6 · 1e-6 · 1e-3 = 1e-15, both far from 1e±308.
 #include <numbers>
 
+#include "contact/robot.hpp"
 #include "core/range.hpp"
+#include "robots/check.hpp"
+#include "robots/robots.hpp"
 
 namespace slipwalk::scene::ranges {
 
@@ -20,20 +23,21 @@ using core::closed;
 using core::Range;
 
 /// A coordinate of a hip in the body frame.
-inline constexpr Range kCoordinate = closed(-1e3, 1e3, "m");
+inline constexpr Range kCoordinate = contact::limits::kPosition;
 /// A length that must be positive (stride, height, radius, tread).
 inline constexpr Range kLength = closed(1e-6, 1e3, "m");
 /// A length that may be zero (lift, swing height of the trot is positive: kLength; riser,
 /// com_height).
 inline constexpr Range kLengthOrZero = closed(0.0, 1e3, "m");
 /// A gait's frequency: one cycle per 11.6 days to a kHz.
-inline constexpr Range kFrequency = closed(1e-6, 1e3, "Hz");
+inline constexpr Range kFrequency = robots::detail::kFrequency;
 /// A leg's spring stiffness K (§3.3).
-inline constexpr Range kStiffness = closed(1e-3, 1e9, "N/m");
+inline constexpr Range kStiffness = contact::limits::kStiffness;
 /// A robot's mass (Mg = mass · 9.81 m/s² is carried by the legs).
 inline constexpr Range kMass = closed(1e-6, 1e6, "kg");
-/// A friction coefficient μ (eq. 3.9).
-inline constexpr Range kFrictionCoefficient = closed(0.0, 1e3);
+/// A friction coefficient μ (eq. 3.9): 0 (no friction) or in contact::limits::kFriction; the
+/// reader checks the gap between 0 and the lower bound (leg_table.cpp).
+inline constexpr Range kFrictionCoefficient = closed(0.0, contact::limits::kFriction.hi);
 /// A phase in cycles: [0, 1).
 inline constexpr Range kPhase = Range{0.0, 1.0, false, true, "cycles"};
 /// The run's duration and its step: at most kMaxSteps steps (scene.hpp) of at least a
@@ -55,13 +59,13 @@ inline constexpr Range kYawAmplitude = closed(0.0, std::numbers::pi / 4.0, "rad"
 inline constexpr Range kTrotStride = closed(1e-6, 0.3, "m");
 inline constexpr Range kTrotSwingHeight = closed(1e-6, 0.2, "m");
 /// The disk robot's rim radius.
-inline constexpr Range kRadius = kLength;
+inline constexpr Range kRadius = robots::kDiskRadius;
 /// The inertia filter's γ per step (§3.5.2.2): [0, 1).
 inline constexpr Range kFilterGamma = Range{0.0, 1.0, false, true, ""};
 /// The Coulomb solver's relative duality gap: below 1e-15 it is rounding.
 inline constexpr Range kCoulombTolerance = closed(1e-15, 1.0);
 /// An anisotropy vector's component (eq. 3.19, H ∝ I + w wᵀ: w wᵀ up to 1e6).
-inline constexpr Range kAnisotropy = closed(-1e3, 1e3);
+inline constexpr Range kAnisotropy = contact::limits::kAnisotropy;
 /// An entry of the residual B (§5.3.1): v_body += B q̇.
 inline constexpr Range kResidualEntry = closed(-1e3, 1e3);
 /// Measurement noise (motion capture, §3.5.1).

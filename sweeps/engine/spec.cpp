@@ -242,6 +242,14 @@ std::string text_key(const toml::table& t, std::string_view key, const std::stri
 
 void check_file_name(const std::string& value, const char* key, const toml::node& node,
                      const std::string& path) {
+  // A name becomes a file or folder name (with ".csv.tmp.<pid>" appended): at most 100 bytes
+  // keeps it well inside NAME_MAX (255) on every file system we write to.
+  constexpr std::size_t kMaxName = 100;
+  if (value.size() > kMaxName) {
+    throw InputError(origin_of(node.source(), path),
+                     std::string(key) + ": a name of " + std::to_string(value.size()) +
+                         " bytes; at most " + std::to_string(kMaxName));
+  }
   const bool ok =
       !value.empty() && value.front() != '.' && std::all_of(value.begin(), value.end(), [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';

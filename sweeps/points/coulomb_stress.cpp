@@ -14,22 +14,23 @@ namespace slipwalk::sweeps::stress {
 
 namespace {
 
-// The ranges drawn from. μ and K span the extremes the brief of the long run asks for: μ from
-// nearly frictionless to a glued foot, K from a sponge to steel; the products that enter the
-// solver (c_k = μ F_z up to 1e7 N, d_k = c_k W q̇ up to 1e9 N m/s, their squares up to 1e18)
-// stay far inside double precision, and so do the smallest ones (c_k ≥ 1e-18 N at μ = 1e-6 with a
-// load 1e-6 of the mean: c_k² ≥ 1e-36, far above the subnormal range).
-constexpr double kMuMin = 1e-6;
-constexpr double kMuMax = 1e3;
-constexpr double kKMin = 1e-3;      // N/m
-constexpr double kKMax = 1e9;       // N/m
-constexpr double kMgMin = 0.1;      // N
-constexpr double kMgMax = 1e4;      // N
-constexpr double kSizeMin = 1e-2;   // m: the feet's spread
-constexpr double kSizeMax = 10.0;   // m
-constexpr double kSpeedMin = 1e-4;  // m/s
-constexpr double kSpeedMax = 10.0;  // m/s
-constexpr double kAnisoMin = 1e-3;  // ‖w‖ of eq. 3.19
+// The ranges drawn from. μ and K span the extremes the model admits (contact::limits, the same
+// bounds a robot file is checked against): μ from nearly frictionless to a glued foot, K from a
+// sponge to steel; the products that enter the solver (c_k = μ F_z up to 1e6 N, d_k = c_k W q̇ up to
+// 1e9 N m/s, their squares up to 1e18) stay far inside double precision, and so do the smallest
+// ones (c_k ≥ 1e-18 N at μ = 1e-6 with a load 1e-6 of the mean: c_k² ≥ 1e-36, far above the
+// subnormal range).
+constexpr double kMuMin = contact::limits::kFriction.lo;
+constexpr double kMuMax = contact::limits::kFriction.hi;
+constexpr double kKMin = contact::limits::kStiffness.lo;  // N/m
+constexpr double kKMax = contact::limits::kStiffness.hi;  // N/m
+constexpr double kMgMin = 0.1;                            // N
+constexpr double kMgMax = 1e4;                            // N
+constexpr double kSizeMin = 1e-2;                         // m: the feet's spread
+constexpr double kSizeMax = 10.0;                         // m
+constexpr double kSpeedMin = 1e-4;                        // m/s
+constexpr double kSpeedMax = 10.0;                        // m/s
+constexpr double kAnisoMin = 1e-3;                        // ‖w‖ of eq. 3.19
 constexpr double kAnisoMax = 10.0;
 
 double log_uniform(Random& rng, double lo, double hi) {
@@ -139,7 +140,10 @@ Eigen::Matrix2Xd draw_layout(Random& rng, Layout layout, int n, Eigen::Vector2d&
 /// Loads by the spring support: feet at a nominal height with jitter of a tenth of the static
 /// sinkage s = Mg/ΣK, a third of them lifted by 0.2–3 s (swinging).
 void support_loads(Random& rng, const contact::Robot& robot, contact::Frame& f) {
-  const double sink = robot.Mg / robot.K.sum();
+  // Heights stay inside contact::limits::kPosition (±1e3 m): a sponge-soft robot whose static
+  // sinkage Mg/ΣK is beyond 100 m gets its feet placed as for 100 m (the support search still
+  // finds its own balance).
+  const double sink = std::min(robot.Mg / robot.K.sum(), 100.0);
   const double h0 = log_uniform(rng, 1e-3, 1.0);
   for (int k = 0; k < f.legs(); ++k) {
     f.q(2, k) = -h0 + rng.uniform(-0.1, 0.1) * sink;

@@ -75,13 +75,18 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
   InchwormInputs in;
   in.p = base;
   Params& p = in.p;
-  p.m = r.number("m", p.m);
-  p.M = r.number("M", p.M);
-  p.L_min = r.number("L_min", p.L_min);
-  p.L_max = r.number("L_max", p.L_max);
-  p.g = r.number("g", p.g);
-  p.mu = r.number("mu", p.mu);
-  p.mu_s = r.number("mu_s", p.mu_s);
+  // Each value in its own range first (inchworm::ranges, the command line's table), at its own
+  // place: the force range below is computed from them.
+  namespace ranges = inchworm::ranges;
+  p.m = r.number("m", p.m, ranges::kMass);
+  p.M = r.number("M", p.M, ranges::kMass);
+  p.L_min = r.number("L_min", p.L_min, ranges::kLength);
+  p.L_max = r.number("L_max", p.L_max, ranges::kLength);
+  p.g = r.number("g", p.g, ranges::kGravity);
+  p.mu = r.number("mu", p.mu, ranges::kFriction);
+  if (r.has("mu_s")) {  // absent: NaN, meaning mu_s = mu
+    p.mu_s = r.number("mu_s", p.mu_s, ranges::kFriction);
+  }
 
   int given = 0;
   for (auto key : {"F", "F_frac", "f_tilde"}) {

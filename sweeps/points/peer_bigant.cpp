@@ -84,7 +84,7 @@ Inputs read(const Point& point) {
   in.settle = r.number("settle", 1.0, 0.0, 60.0, true);
   in.sample = r.number("sample", 0.1, 0.0, 60.0);
   in.dt = r.number("dt", 0.01, core::closed(1e-6, 1.0, "s"));
-  in.mu = r.number("mu", 1.0, 0.0, 100.0, true);
+  in.mu = r.number("mu", 1.0, contact::limits::kFriction);  // the robot's own check
   in.timestep = r.number("timestep", 0.002, core::closed(1e-6, 0.05, "s"));
   in.kp_xy = r.number("kp_xy", 100.0, 0.0, 1e9);
   in.kp_z = r.number("kp_z", 1000.0, 0.0, 1e9);

@@ -1,6 +1,7 @@
 // core::read_input_file: every kind of path that is not a readable file of bounded size is
 // refused as bad input naming the path, and a readable one comes back byte for byte.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -64,6 +65,12 @@ TEST_F(InputFile, AFolderIsRefusedAsAFolderWhateverItsSpelling) {
                             dir_ / "sub" / ".", dir_ / "sub" / ".."}) {
     EXPECT_NE(refusal(p).find("is a folder"), std::string::npos) << p;
   }
+}
+
+TEST_F(InputFile, ANamedPipeIsRefusedWithoutWaitingForAWriter) {
+  const fs::path p = dir_ / "pipe.toml";
+  ASSERT_EQ(::mkfifo(p.c_str(), 0600), 0);
+  EXPECT_NE(refusal(p).find("is a named pipe"), std::string::npos);
 }
 
 TEST_F(InputFile, AnEmptyPathIsRefused) {
