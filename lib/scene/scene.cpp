@@ -9,6 +9,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "core/toml_input.hpp"
 #include "scene/effects.hpp"
 #include "scene/friction_laws.hpp"
 #include "scene/ranges.hpp"
@@ -196,12 +197,7 @@ terrain::Terrain read_terrain(const TableReader& t) {
 }  // namespace
 
 Scene parse_scene(std::string_view text, const std::string& path) {
-  toml::table doc;
-  try {
-    doc = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(origin_of(e.source(), path), std::string(e.description()));
-  }
+  const toml::table doc = core::parse_toml(text, path);
   check_top_level(doc, path);
   const std::vector<TableSchema>& all = schema();
   Scene scene;

@@ -8,6 +8,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "core/toml_input.hpp"
 #include "sweeps/engine/toml_util.hpp"
 
 namespace slipwalk::sweeps {
@@ -447,12 +448,7 @@ std::vector<double> logspace(double a, double b, long long n) {
 }
 
 Spec parse_spec(std::string_view text, const std::string& path, bool quick) {
-  toml::table doc;
-  try {
-    doc = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(origin_of(e.source(), path), std::string(e.description()));
-  }
+  const toml::table doc = core::parse_toml(text, path);
   Spec spec;
   spec.path = path;
   spec.quick = quick;

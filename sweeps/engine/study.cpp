@@ -10,6 +10,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "core/toml_input.hpp"
 #include "scene/friction_laws.hpp"
 #include "scene/ranges.hpp"
 #include "scene/run_writer.hpp"
@@ -290,12 +291,7 @@ Study load_study(const std::filesystem::path& dir) {
   const std::filesystem::path file = dir / "study.toml";
   const std::string path = file.string();
   const std::string content = core::read_input_file(file, "a study file");
-  toml::table doc;
-  try {
-    doc = toml::parse(content, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(origin_of(e.source(), path), std::string(e.description()));
-  }
+  const toml::table doc = core::parse_toml(content, path);
   for (auto&& [k, v] : doc) {
     if (k == "title") {
       study.title = text(v, "title", path);

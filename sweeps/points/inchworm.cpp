@@ -70,6 +70,19 @@ void force_range(const Reader& r, InchwormInputs& in) {
   in.F_max = r.number("F_max", 5.0 * p.M * p.g);
 }
 
+/// inchworm::validate(p), its errors named by the spec's keys instead of command-line options
+/// (--force maps to whichever force key the point used: F, F_frac or f_tilde).
+void validate_at_keys(const Reader& r, const Params& p, std::string_view force_key) {
+  try {
+    inchworm::validate(p);
+  } catch (const InputError& e) {
+    const std::string_view mapped = inchworm::param_key_of_option(e.where());
+    const std::string_view key = mapped.empty() || mapped == "F" ? force_key : mapped;
+    const std::string what = e.what();
+    r.fail(key, what.substr(std::min(what.size(), e.where().size() + 2)));
+  }
+}
+
 /// Params, the force and the method of an inchworm point; throws InputError naming the key.
 InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& base = {}) {
   InchwormInputs in;
@@ -104,6 +117,11 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
       r.fail(key, "only used with F_frac");
     }
   }
+  // The ratio constraints (M > m, L_max > L_min, mu_s >= mu) before the force range is built
+  // from them: validate() with the largest admissible force checks everything but the force.
+  Params largest_force = p;
+  largest_force.F = inchworm::ranges::kForce.hi;
+  validate_at_keys(r, largest_force, in.force_key);
   force_range(r, in);
   if (in.force_key == "F") {
     p.F = *r.number("F");
@@ -119,22 +137,20 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
       r.fail("F_frac", "must be in [0, 1], got " + core::format_double(frac));
     }
     if (!(in.F_max > in.F_lo)) {
-      r.fail(r.has("F_max") ? "F_max" : "F_lo",
-             "F_max = " + core::format_double(in.F_max) +
-                 " N must exceed F_lo = " + core::format_double(in.F_lo) + " N");
+      // Name a key the spec gives (it has a place): the range's own, else what F_lo is made of.
+      std::string_view key = "F_lo";
+      for (auto k : {"F_max", "F_lo", "F_lo_factor", "mu_s", "mu", "m", "M", "g"}) {
+        if (r.has(k)) {
+          key = k;
+          break;
+        }
+      }
+      r.fail(key, "F_max = " + core::format_double(in.F_max) +
+                      " N must exceed F_lo = " + core::format_double(in.F_lo) + " N");
     }
     p.F = in.F_lo + frac * (in.F_max - in.F_lo);
   }
-  // The library's checks name command-line options; name the spec's keys instead.
-  try {
-    inchworm::validate(p);
-  } catch (const InputError& e) {
-    // --force maps to whichever force key the point used (F, F_frac or f_tilde).
-    const std::string_view mapped = inchworm::param_key_of_option(e.where());
-    const std::string_view key = mapped.empty() || mapped == "F" ? in.force_key : mapped;
-    const std::string what = e.what();
-    r.fail(key, what.substr(std::min(what.size(), e.where().size() + 2)));
-  }
+  validate_at_keys(r, p, in.force_key);
 
   if (const auto name = r.text("method")) {
     const auto m = inchworm::parse_method(*name);
