@@ -502,6 +502,15 @@ Verdict run_case(const fs::path& binary, const Case& c, const fs::path& scratch)
   if (finished && o.exit_code == 0) {
     allowed_files = c.outputs;
   }
+  // A signal that lands after the last rename but before the exit finds the work done: the whole
+  // set of outputs (a CSV with its sidecar) may stay, never a part of it.
+  if (ours && !c.outputs.empty() &&
+      std::all_of(c.outputs.begin(), c.outputs.end(), [&](const std::string& out) {
+        std::error_code ec;
+        return fs::is_regular_file(dir / out, ec);
+      })) {
+    allowed_files = c.outputs;
+  }
   if (ours || (o.sent && finished && o.exit_code == 0)) {
     allowed_prefixes = c.after_signal;
   }

@@ -133,7 +133,7 @@ TEST(SceneLegs, Errors) {
                "K = -5.0\nmu = 0.8\nphase = 0.500000\n[gait]"),
        "K = -5", 5, "robot.leg.K: must be in [0.001, 1000000000] N/m, got -5"},
       {replace(good, "mu = 0.8", "mu = -0.1"), "mu = -0.1", 6,
-       "robot.leg.mu: must be in [0, 1000]"},
+       "robot.leg.mu: must be in [0, 100]"},
       {replace(good, "phase = 0.500000", "phase = 1.0"), "phase = 1.0", 9,
        "robot.leg.phase: must be in [0, 1) cycles"},
       {replace(good, "K = 2675.0\n", ""), "[[robot.leg]]", 1, "missing required key 'K'"},
