@@ -77,7 +77,17 @@ void validate_at_keys(const Reader& r, const Params& p, std::string_view force_k
     inchworm::validate(p);
   } catch (const InputError& e) {
     const std::string_view mapped = inchworm::param_key_of_option(e.where());
-    const std::string_view key = mapped.empty() || mapped == "F" ? force_key : mapped;
+    std::string_view key = mapped.empty() || mapped == "F" ? force_key : mapped;
+    // A ratio constraint broken by the other value of its pair names the one the spec gives,
+    // which has a place in the file (M > m with only m given names m).
+    static constexpr std::pair<std::string_view, std::string_view> kPartner[] = {
+        {"M", "m"}, {"m", "M"}, {"L_max", "L_min"}, {"L_min", "L_max"}, {"mu_s", "mu"}};
+    for (const auto& [a, b] : kPartner) {
+      if (key == a && !r.has(a) && r.has(b)) {
+        key = b;
+        break;
+      }
+    }
     const std::string what = e.what();
     r.fail(key, what.substr(std::min(what.size(), e.where().size() + 2)));
   }
