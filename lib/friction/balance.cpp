@@ -119,7 +119,7 @@ bool Psd3::factorize(const Eigen::Matrix3d& M) {
   }
   chol_ = false;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(M);
-  const Eigen::Vector3d lam = es.eigenvalues();
+  const Eigen::Vector3d& lam = es.eigenvalues();
   const double floor = kRankTol * std::max(lam.cwiseAbs().sum(), 0.0);
   V_ = es.eigenvectors();
   rank_ = 0;

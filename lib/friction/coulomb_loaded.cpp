@@ -370,17 +370,20 @@ bool polish(Context& cx, const Eigen::Vector3d& y_path, double delta, double lim
         p = -newton.solve(g);
       }
       // Backtrack on the gradient's norm (Φ's changes are below rounding near the end).
+      // At most 20 halvings: t down to 2^-20 ≈ 1e-6.
+      constexpr int kHalvings = 20;
       double t = 1.0;
       Eigen::Vector3d g_trial;
       Eigen::Matrix3d H_trial;
-      for (; t > 1e-6; t *= 0.5) {
+      int halvings = 0;
+      for (; halvings < kHalvings; ++halvings, t *= 0.5) {
         cx.phi.derivatives(y + t * p, 0.0, g_trial, H_trial);
         const double gt = m > 0 ? std::abs(e.dot(g_trial)) : g_trial.norm();
         if (gt < gn) {
           break;
         }
       }
-      if (t <= 1e-6) {
+      if (halvings == kHalvings) {
         break;
       }
       y += t * p;
