@@ -2,6 +2,10 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
+
+#include "core/error.hpp"
 
 namespace slipwalk::robots {
 
@@ -17,18 +21,41 @@ FourBar bigant_linkage() {
   return f;
 }
 
-BigAntLegs bigant_legs() {
-  BigAntLegs legs{
-      bigant_linkage(), Eigen::Matrix3Xd(3, kBigAntLegs), {"HL", "ML", "FL", "HR", "MR", "FR"}};
-  validate(legs.linkage);
-  // Place each crank pivot so that the toe at mid-stance (φ = 0) is at its stance centre.
-  const Eigen::Vector2d mid = four_bar_pose(legs.linkage, kBigAntCrankPhase).P;
-  for (int j = 0; j < kBigAntLegs; ++j) {
-    const double x = kBigAntLegSpacing * static_cast<double>(j % 3 - 1);  // hind, mid, front
-    const double y = j < 3 ? kBigAntFootLateral : -kBigAntFootLateral;
-    legs.pivot.col(j) = Eigen::Vector3d(x - mid.x(), y, 0.0);
+namespace {
+
+void check_leg_count(int legs) {
+  if (legs < 2 || legs > kBigAntMaxLegs || legs % 2 != 0) {
+    throw core::InputError("legs", "a BigANT-like robot has an even number of legs in [2, " +
+                                       std::to_string(kBigAntMaxLegs) + "], got " +
+                                       std::to_string(legs));
   }
-  return legs;
+}
+
+}  // namespace
+
+BigAntLegs bigant_legs(int legs) {
+  check_leg_count(legs);
+  const int side = legs / 2;
+  BigAntLegs out{bigant_linkage(), Eigen::Matrix3Xd(3, legs), {}};
+  validate(out.linkage);
+  if (legs == kBigAntLegs) {
+    out.names = {"HL", "ML", "FL", "HR", "MR", "FR"};
+  } else {
+    for (int j = 0; j < legs; ++j) {
+      std::string name(1, j < side ? 'L' : 'R');
+      name.append(std::to_string(j % side + 1));
+      out.names.push_back(std::move(name));
+    }
+  }
+  // Place each crank pivot so that the toe at mid-stance (φ = 0) is at its stance centre.
+  const Eigen::Vector2d mid = four_bar_pose(out.linkage, kBigAntCrankPhase).P;
+  for (int j = 0; j < legs; ++j) {
+    const double x = kBigAntLegSpacing * (static_cast<double>(j % side) -
+                                          0.5 * static_cast<double>(side - 1));  // hind → front
+    const double y = j < side ? kBigAntFootLateral : -kBigAntFootLateral;
+    out.pivot.col(j) = Eigen::Vector3d(x - mid.x(), y, 0.0);
+  }
+  return out;
 }
 
 void bigant_toe(const BigAntLegs& legs, int leg, double phi, Eigen::Ref<Eigen::Vector3d> q,
@@ -40,9 +67,13 @@ void bigant_toe(const BigAntLegs& legs, int leg, double phi, Eigen::Ref<Eigen::V
   dq_dphi = Eigen::Vector3d(-kTwoPi * p.dP.x(), 0.0, -kTwoPi * p.dP.y());
 }
 
-contact::Robot bigant_robot() {
-  const double mg = kBigAntMass * kGravity;
-  return contact::uniform_robot(kBigAntLegs, mg / (3.0 * kBigAntStaticSinkage), 1.0, mg);
+contact::Robot bigant_robot() { return bigant_robot(kBigAntLegs); }
+
+contact::Robot bigant_robot(int legs) {
+  check_leg_count(legs);
+  const double n = static_cast<double>(legs);
+  const double mg = kBigAntMass * kGravity * (n / kBigAntLegs);  // × 1.0 exactly for BigANT
+  return contact::uniform_robot(legs, mg / (0.5 * n * kBigAntStaticSinkage), 1.0, mg);
 }
 
 }  // namespace slipwalk::robots

@@ -48,14 +48,21 @@ inline constexpr double kBigAntFootLateral = 0.20;    ///< m, |y| of the toes
 [[nodiscard]] FourBar bigant_linkage();
 inline constexpr double kBigAntCrankPhase = -0.979;  ///< θ₀, rad: θ = θ₀ − 2πφ
 
-/// The six legs: linkage and where each crank pivot sits in the body frame.
+/// The legs: linkage and where each crank pivot sits in the body frame.
 struct BigAntLegs {
   FourBar linkage;                 ///< shared by all legs
-  Eigen::Matrix3Xd pivot;          ///< (3 × 6) crank pivot O₂ of each leg, body frame, m
-  std::vector<std::string> names;  ///< HL, ML, FL, HR, MR, FR
+  Eigen::Matrix3Xd pivot;          ///< (3 × N) crank pivot O₂ of each leg, body frame, m
+  std::vector<std::string> names;  ///< HL, ML, FL, HR, MR, FR; L1 … Ln, R1 … Rn (hind to front)
 };
 
-[[nodiscard]] BigAntLegs bigant_legs();
+/// The most legs a BigANT-like chassis may have (planning's growth study goes to 12).
+inline constexpr int kBigAntMaxLegs = 40;
+
+/// BigANT's six legs, or a BigANT-like robot with an even number `legs` ∈ [2, kBigAntMaxLegs]
+/// of the same legs: legs/2 per side, hind to front, kBigAntLegSpacing apart and centred on the
+/// body origin, left side first (for 6 legs exactly BigANT's placement and order). Throws
+/// core::InputError("legs", ...) for another count.
+[[nodiscard]] BigAntLegs bigant_legs(int legs = kBigAntLegs);
 
 /// Toe of `leg` at shaft angle φ (turns): position q (m, body frame) and dq/dφ (m per turn),
 /// from the closed-form loop closure and its derivative (robots/four_bar.hpp). No allocation.
@@ -69,5 +76,10 @@ void bigant_toe(const BigAntLegs& legs, int leg, double phi, Eigen::Ref<Eigen::V
 /// variation of the stance line (all stance feet keep carrying load). The thesis' naive K = 10
 /// with Mg = 1 (§3.5.1.4) would be a 3.3 cm compression in metres.
 [[nodiscard]] contact::Robot bigant_robot();
+
+/// A BigANT-like robot with `legs` legs (bigant_legs(legs)): the weight grows with the chassis,
+/// Mg = 80.25 N · legs/6, and K = Mg / (legs/2 · 1 cm), so one "tripod" (half the legs) standing
+/// compresses by 1 cm as on BigANT. bigant_robot(6) is bigant_robot().
+[[nodiscard]] contact::Robot bigant_robot(int legs);
 
 }  // namespace slipwalk::robots
