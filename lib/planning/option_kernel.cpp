@@ -18,8 +18,7 @@ double wrap_turns(double x) {
 
 bool support_ok(const contact::SupportSummary& s) {
   using Status = contact::SupportSummary::Status;
-  return s.status == Status::kBalanced || s.status == Status::kLine ||
-         s.status == Status::kPoint;
+  return s.status == Status::kBalanced || s.status == Status::kLine || s.status == Status::kPoint;
 }
 
 }  // namespace

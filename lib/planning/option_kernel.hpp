@@ -25,7 +25,7 @@ struct NodeTable {
   /// (s · columns + c) · N + i is leg i at substep s moving at speed column c.
   Eigen::Matrix3Xd q;
   Eigen::Matrix3Xd qdot;
-  std::vector<char> chooses;  ///< (N) 1 for a leg that chooses its speed (the contact rule)
+  std::vector<char> chooses;   ///< (N) 1 for a leg that chooses its speed (the contact rule)
   std::vector<int> free_legs;  ///< the legs that choose, ascending (capacity N)
 
   [[nodiscard]] Eigen::Index at(int s, int column, int leg) const {

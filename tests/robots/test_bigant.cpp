@@ -8,10 +8,12 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "connection/trajectory.hpp"
 #include "contact/spring_support.hpp"
+#include "core/error.hpp"
 #include "robots/bigant.hpp"
 #include "robots/robots.hpp"
 
@@ -109,6 +111,52 @@ TEST(BigAntRobot, WeightStiffnessAndFriction) {
     EXPECT_DOUBLE_EQ(r.K(j), r.Mg / 0.03);  // 1 cm mean compression on one tripod
     EXPECT_EQ(r.mu(j), 1.0);
     EXPECT_EQ(r.w.col(j).norm(), 0.0);
+  }
+}
+
+TEST(BigAntRobot, SixLegsAreBigAntItselfWhateverTheCallSaysIt) {
+  const BigAntLegs a = bigant_legs();
+  const BigAntLegs b = bigant_legs(6);
+  EXPECT_EQ(a.names, b.names);
+  EXPECT_EQ((a.pivot - b.pivot).norm(), 0.0);
+  const contact::Robot r = bigant_robot(6);
+  EXPECT_EQ(r.Mg, bigant_robot().Mg);
+  EXPECT_EQ(r.K, bigant_robot().K);
+}
+
+TEST(BigAntRobot, MoreLegsSitHalfPerSideEquallySpacedAndCentredWithOneCentimetreSinkage) {
+  for (int n : {2, 8, 10, 12}) {
+    const BigAntLegs legs = bigant_legs(n);
+    const contact::Robot r = bigant_robot(n);
+    ASSERT_EQ(legs.pivot.cols(), n);
+    ASSERT_EQ(r.legs(), n);
+    const int side = n / 2;
+    Eigen::Vector3d toe;
+    Eigen::Vector3d d;
+    double x_sum = 0.0;
+    for (int j = 0; j < n; ++j) {
+      bigant_toe(legs, j, 0.0, toe, d);  // mid-stance
+      x_sum += toe.x();
+      EXPECT_EQ(toe.y(), j < side ? kBigAntFootLateral : -kBigAntFootLateral);
+      if (j % side > 0) {
+        Eigen::Vector3d behind;
+        bigant_toe(legs, j - 1, 0.0, behind, d);
+        EXPECT_NEAR(toe.x() - behind.x(), kBigAntLegSpacing, 1e-12);
+      }
+    }
+    EXPECT_NEAR(x_sum / n, 0.0, 1e-12);  // centred on the body origin, the CoM
+    EXPECT_NEAR(r.Mg, 8.18 * 9.81 * n / 6.0, 1e-12);
+    // Half the legs standing compress by 1 cm: K · (n/2) · 0.01 = Mg.
+    EXPECT_NEAR(r.K(0) * side * 0.01, r.Mg, 1e-9);
+    EXPECT_EQ(legs.names.front(), "L1");
+    EXPECT_EQ(legs.names.back(), "R" + std::to_string(side));
+  }
+}
+
+TEST(BigAntRobot, RefusesAnOddOrOutOfRangeLegCount) {
+  for (int n : {0, 1, 3, 7, kBigAntMaxLegs + 2}) {
+    EXPECT_THROW((void)bigant_legs(n), core::InputError) << n;
+    EXPECT_THROW((void)bigant_robot(n), core::InputError) << n;
   }
 }
 
