@@ -135,8 +135,9 @@ PlanRobot read_robot(const TableReader& plan) {
     return bigant_plan_robot();
   }
   const auto* s = node->as_string();
-  plan.check(s != nullptr, *node, "robot",
-             std::string("expected a string, got ") + scene::type_name(*node));
+  if (s == nullptr) {
+    plan.fail(*node, "robot", std::string("expected a string, got ") + scene::type_name(*node));
+  }
   const std::string& name = s->get();
   constexpr std::string_view kPrefix = "bigant";
   int legs = robots::kBigAntLegs;
@@ -240,8 +241,9 @@ void read_plan(const TableReader& plan, PlanFile& file) {
   read_integer(plan, "beam", ranges::kBeam, o.beam);
   if (const toml::node* n = plan.find("deduplicate")) {
     const auto* b = n->as_boolean();
-    plan.check(b != nullptr, *n, "deduplicate",
-               std::string("expected a boolean, got ") + scene::type_name(*n));
+    if (b == nullptr) {
+      plan.fail(*n, "deduplicate", std::string("expected a boolean, got ") + scene::type_name(*n));
+    }
     o.deduplicate = b->get();
   }
   read_integer(plan, "threads", ranges::kThreads, o.threads);
