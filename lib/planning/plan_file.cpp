@@ -22,6 +22,7 @@
 #include "core/toml_input.hpp"
 #include "planning/plan_csv.hpp"
 #include "robots/bigant.hpp"
+#include "scene/run_writer.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace slipwalk::planning {
@@ -231,8 +232,8 @@ void read_plan(const TableReader& plan, PlanFile& file) {
   if (const toml::node* n = plan.find("steps")) {
     read_integer(plan, "steps", ranges::kSteps, o.steps);
     // The CSV's size is known now: refused here, at steps, before anything runs.
-    const double columns = 13.0 + 3.0 * legs;
-    const double bytes = static_cast<double>(o.steps + 1) * columns * 25.0;
+    const auto columns = static_cast<double>(plan_columns(file.robot).size());
+    const double bytes = static_cast<double>(o.steps + 1) * columns * scene::kMaxCellBytes;
     plan.check(bytes <= kMaxPlanBytes, *n, "steps",
                "the plan would write up to " + core::format_double(bytes / 1e9) +
                    " GB of CSV; at most " + core::format_double(kMaxPlanBytes / 1e9) + " GB");
@@ -482,23 +483,28 @@ PlanRun write_plan(const PlanFile& plan, const std::filesystem::path& csv_path,
   const double tau = static_cast<double>(options.execute) * options.horizon /
                      static_cast<double>(options.substeps);
   const auto start = std::chrono::steady_clock::now();
-  result.summary = planning::plan(
-      plan.robot, options, plan.goal, plan.start,
-      [&](const StepRecord& r) { write_plan_row(csv, options, r); },
-      [&](long long done, long long total) {
-        if (done % every != 0 && done != total) {
-          return;
-        }
-        file.check();  // a full disk stops the plan here, not at its end
-        if (progress != nullptr) {
-          std::ostringstream line;
-          line << "slipwalk plan: " << done << "/" << total << " steps (t = "
-               << core::format_double(plan.start.t + static_cast<double>(done) * tau) << " s; "
-               << std::fixed << std::setprecision(1) << core::seconds_since(start)
-               << " s elapsed)\n";
-          *progress << line.str() << std::flush;
-        }
-      });
+  try {
+    result.summary = planning::plan(
+        plan.robot, options, plan.goal, plan.start,
+        [&](const StepRecord& r) { write_plan_row(csv, options, r); },
+        [&](long long done, long long total) {
+          if (done % every != 0 && done != total) {
+            return;
+          }
+          file.check();  // a full disk stops the plan here, not at its end
+          if (progress != nullptr) {
+            std::ostringstream line;
+            line << "slipwalk plan: " << done << "/" << total << " steps (t = "
+                 << core::format_double(plan.start.t + static_cast<double>(done) * tau) << " s; "
+                 << std::fixed << std::setprecision(1) << core::seconds_since(start)
+                 << " s elapsed)\n";
+            *progress << line.str() << std::flush;
+          }
+        });
+  } catch (const core::ComputationError& e) {
+    // The rows so far are not a result: the temporary goes with `file`.
+    throw core::ComputationError(plan.path + ": " + e.what());
+  }
   result.wall_s = core::seconds_since(start);
   file.finish();
 

@@ -203,6 +203,9 @@ TEST(CliPlan, APlanWithNoFeasibleOptionExitsOneAndWritesNothing) {
   const auto r =
       run_slipwalk({"plan", (dir / "plan.toml").string(), "--out", (dir / "out.csv").string()});
   EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("slipwalk: error: " + (dir / "plan.toml").string() + ": "),
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("no option is feasible"), std::string::npos) << r.err;
   EXPECT_EQ(files_under(dir.path()), (std::vector<std::string>{"plan.toml"}));
 }
