@@ -408,7 +408,11 @@ PlanSummary plan(const PlanRobot& robot, const PlanOptions& options, const Goal&
   StepChoice choice;
   for (long long step = 0; step < options.steps; ++step) {
     const core::Pose2 target = target_at(goal, state.t);
-    plan_step(robot, options, goal, state, data, choice);
+    try {
+      plan_step(robot, options, goal, state, data, choice);
+    } catch (const core::ComputationError& e) {
+      throw core::ComputationError("step " + std::to_string(step) + ", " + e.what());
+    }
     distance_sum += se2_distance(state.pose, target, options.rotation_length);
     if (sink) {
       sink(StepRecord{step, state, target, choice});

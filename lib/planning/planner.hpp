@@ -168,8 +168,8 @@ class PlanData {
 /// An option is infeasible when the model cannot follow it at some substep: the spring support
 /// finds no balance (the robot tips: kUnsupported; or kIterationLimit, kNonFinite), the friction
 /// solve does not converge, or the pose is not finite. Its cost is +∞; it is never chosen. A
-/// step whose options are all infeasible throws core::ComputationError ("step 12 at t = 0.06 s:
-/// no option is feasible").
+/// step whose options are all infeasible throws core::ComputationError ("t = 0.06 s: no option
+/// is feasible …"; plan() puts the step in front: "step 12, t = 0.06 s: …").
 
 /// Chooses the option to execute from `state`, towards `goal`, into `choice` (its vectors are
 /// sized on the first call and reused: no allocation afterwards).
