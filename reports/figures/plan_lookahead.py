@@ -86,7 +86,7 @@ def main():
             ax.plot(cost[i0], 1e3 * y[i0], marker, mfc="none", mec="black", ms=12, ls="none")
             for j in range(H.size):
                 ax.annotate(f"{H[j]},{K[j]}", (cost[j], 1e3 * y[j]), textcoords="offset points",
-                            xytext=(5, 3), fontsize=8, color=GOAL_COLOR[g])
+                            xytext=(5, 3), fontsize=9, color=GOAL_COLOR[g])
         axes[2].plot(cost, 1e3 * wall, marker, color=GOAL_COLOR[g], ms=7, ls="none", label=label)
     if not best_rel:
         c.fail(f"{t.path}: no plans of the goals {', '.join(GOALS)}")

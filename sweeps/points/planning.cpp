@@ -138,11 +138,13 @@ constexpr std::array kPlanKeyColumns = {
 constexpr const char* kStepWallColumn = "step_wall_s";
 
 std::vector<ColumnInfo> plan_run_columns() {
+  const std::vector<std::string> plan = planning::plan_columns(bigant());
   std::vector<ColumnInfo> columns;
+  columns.reserve(kPlanKeyColumns.size() + plan.size() + 1);
   for (const PlanKeyColumn& c : kPlanKeyColumns) {
     columns.push_back({c.name, c.unit, false});
   }
-  for (const std::string& name : planning::plan_columns(bigant())) {
+  for (const std::string& name : plan) {
     columns.push_back({name, "", false});
   }
   columns.push_back({kStepWallColumn, "s", true});
