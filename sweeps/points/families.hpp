@@ -31,6 +31,9 @@ namespace slipwalk::sweeps::points {
 [[nodiscard]] std::vector<PointKind> scene_cost_kinds();
 /// BigANT up a slope: progress per cycle and the stall slope, §5.2.1 (slope.cpp).
 [[nodiscard]] std::vector<PointKind> slope_kinds();
+/// The brute-force planner of §5.4–5.5 on BigANT: plans, their summaries, the toe path of Fig.
+/// 5.8 (planning.cpp).
+[[nodiscard]] std::vector<PointKind> planning_kinds();
 /// The long run of the Coulomb solver on random stress frames, §3.4 (coulomb_long_run.cpp).
 [[nodiscard]] std::vector<PointKind> coulomb_long_run_kinds();
 

@@ -44,6 +44,9 @@ const std::map<std::string, std::string>& bases() {
       {"scene_cost", "steps = 5\nrepeats = 1\n"},
       {"slope_progress", "cycles = 2\nsteps_per_cycle = 10\nangle_deg = 5.0\n"},
       {"stall_slope", "cycles = 2\nsteps_per_cycle = 10\ntol_deg = 20.0\n"},
+      {"plan_run", "goal = \"twist\"\nsteps = 2\n"},
+      {"plan_summary", "goal = \"twist\"\nsteps = 2\n"},
+      {"foot_path", "samples = 5\n"},
   };
   return all;
 }
