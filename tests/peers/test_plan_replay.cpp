@@ -30,6 +30,7 @@ namespace {
   GTEST_SKIP() << "built without MuJoCo (SLIPWALK_MUJOCO=OFF or libmujoco-dev missing)"
 #endif
 
+#ifdef SLIPWALK_HAVE_MUJOCO
 planning::PlanTrack short_plan(const Eigen::Vector3d& twist, long long steps) {
   const planning::PlanRobot robot = planning::bigant_plan_robot();
   planning::PlanOptions options;
@@ -39,7 +40,6 @@ planning::PlanTrack short_plan(const Eigen::Vector3d& twist, long long steps) {
   return planning::plan_track(robot, options, goal, planning::tripod_start(robot));
 }
 
-#ifdef SLIPWALK_HAVE_MUJOCO
 /// MuJoCo's feet close to the plan's (Fig. 3.14's robot with stiff x/y slides and the lead), a
 /// short settle.
 PlanReplayOptions stiff() {
