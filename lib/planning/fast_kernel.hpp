@@ -1,0 +1,57 @@
+#pragma once
+// The planner's inner loop in one routine (thesis §5.5: every option is T_s evaluations of the
+// ch. 3 model): the spring support (§3.3) and the viscous-Coulomb balance (§3.4) of one option at
+// one substep, fused and warm-started, with the reference kernels as the fallback wherever this
+// route cannot certify its answer. option_kernel.cpp dispatches to it; the reference loop stays
+// (integrate_option_reference) for the tests.
+//
+// Why it is faster and still the same model:
+//  - Substep 0 is the node's configuration for every option (q does not depend on the speeds):
+//    its spring support is solved once per node (NodeTable::start_*), by the reference itself.
+//  - Successive substeps move the feet by a few millimetres, so the previous substep's contact set
+//    and state (α, β, z) are one Newton step from the new balance: the active-set Newton of
+//    contact/support_newton.cpp started there instead of at the all-feet plane. Its certificate is
+//    the reference's (contact set read off the heights repeats, no foot within 10³ × rounding of
+//    its plane, the cell's Hessian safely definite, balance residual at rounding): U is then
+//    strictly convex around the state and the state is its unique minimizer, which is also what
+//    contact::spring_support returns. Anything else falls back to contact::spring_support.
+//  - The pass that certifies the support also sums the viscous balance (c_k = μ_k F_z,k, eq.
+//    3.19 with G = I) and its 3 × 3 system is solved by cofactors (one division) when its pivots
+//    pass friction's definiteness test; a robot with anisotropy (w ≠ 0), a Coulomb law, or a
+//    singular balance take the reference solvers.
+//  - The SE(2) advance (core::advance) carries cos θ, sin θ along the substeps (one rotation
+//    product per substep) and evaluates sin, cos and sinc of the small half angle ω h / 2 by their
+//    Taylor series (the omitted term below 1e-20 relative for |ω h / 2| < 0.05).
+// The result differs from the reference only by rounding (tests/planning/test_option_kernel.cpp:
+// 1e-12 relative on end poses). Each option is integrated on its own, so its result does not
+// depend on the other options of its chunk, nor on the thread that runs it.
+#include "contact/robot.hpp"
+#include "core/se2.hpp"
+
+namespace slipwalk::planning {
+
+struct NodeTable;
+struct PlanRobot;
+struct PlanOptions;
+
+namespace detail {
+
+/// Which route each substep took (for the tests; counted only when asked for).
+struct FastCounts {
+  long long substeps = 0;            ///< substeps integrated
+  long long support_fallbacks = 0;   ///< substeps whose support contact::spring_support decided
+  long long friction_fallbacks = 0;  ///< substeps friction::solve_viscous_coulomb solved
+  long long reference = 0;           ///< options handed whole to the reference (anisotropic robot)
+};
+
+/// The fast route for options.law = kViscousCoulomb: same contract as integrate_option.
+bool integrate_option_fast(const PlanRobot& robot, const PlanOptions& options,
+                           const NodeTable& table, const int* columns, int substeps,
+                           core::Pose2& pose, contact::Frame& frame, FastCounts* counts = nullptr);
+
+/// Fills the table's substep-0 support (NodeTable::start_*) from `frame`, on which
+/// contact::spring_support has just run at the node's configuration.
+void store_start_support(const PlanRobot& robot, const contact::Frame& frame, NodeTable& table);
+
+}  // namespace detail
+}  // namespace slipwalk::planning
