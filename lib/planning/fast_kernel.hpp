@@ -44,10 +44,27 @@ struct FastCounts {
   long long reference = 0;           ///< options handed whole to the reference (anisotropic robot)
 };
 
-/// The fast route for options.law = kViscousCoulomb: same contract as integrate_option.
-bool integrate_option_fast(const PlanRobot& robot, const PlanOptions& options,
-                           const NodeTable& table, const int* columns, int substeps,
-                           core::Pose2& pose, contact::Frame& frame, FastCounts* counts = nullptr);
+/// Options integrated side by side (one per lane of the batch's vectors).
+inline constexpr int kBatch = 4;
+
+/// The fast route for options.law = kViscousCoulomb: integrate_option for `count` ≤ kBatch
+/// options at once (columns[l]: option l's N speed columns; poses[l] advanced; ok[l] its
+/// feasibility). An option's result does not depend on `count` nor on the other options.
+void integrate_batch(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
+                     const int* const* columns, int count, int substeps, core::Pose2* poses,
+                     bool* ok, contact::Frame& frame, FastCounts* counts = nullptr);
+
+/// The same option by option, scalar (a second implementation for the tests, and the route a
+/// lane takes for a substep the batch cannot certify at once).
+bool integrate_option_scalar(const PlanRobot& robot, const PlanOptions& options,
+                             const NodeTable& table, const int* columns, int substeps,
+                             core::Pose2& pose, contact::Frame& frame,
+                             FastCounts* counts = nullptr);
+
+/// Not for callers: the batch's vector code (an AVX2 clone and the portable default).
+void integrate_batch_vector(const PlanRobot& robot, const NodeTable& table,
+                            const int* const* columns, int count, int substeps, core::Pose2* poses,
+                            bool* ok, contact::Frame& frame, FastCounts* counts);
 
 /// Fills the table's substep-0 support (NodeTable::start_*) from `frame`, on which
 /// contact::spring_support has just run at the node's configuration.

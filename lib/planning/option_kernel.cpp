@@ -110,10 +110,24 @@ void option_columns(const NodeTable& table, const int* digits, int* columns) {
 
 bool integrate_option(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
                       const int* columns, int substeps, core::Pose2& pose, contact::Frame& frame) {
+  bool ok = false;
+  integrate_options(robot, options, table, &columns, 1, substeps, &pose, &ok, frame);
+  return ok;
+}
+
+static_assert(kOptionBatch == detail::kBatch);
+
+void integrate_options(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
+                       const int* const* columns, int count, int substeps, core::Pose2* poses,
+                       bool* ok, contact::Frame& frame) {
   if (options.law == connection::FrictionLaw::kViscousCoulomb) {
-    return detail::integrate_option_fast(robot, options, table, columns, substeps, pose, frame);
+    detail::integrate_batch(robot, options, table, columns, count, substeps, poses, ok, frame);
+    return;
   }
-  return integrate_option_reference(robot, options, table, columns, substeps, pose, frame);
+  for (int l = 0; l < count; ++l) {
+    ok[l] =
+        integrate_option_reference(robot, options, table, columns[l], substeps, poses[l], frame);
+  }
 }
 
 bool integrate_option_reference(const PlanRobot& robot, const PlanOptions& options,

@@ -72,6 +72,14 @@ bool integrate_option_reference(const PlanRobot& robot, const PlanOptions& optio
 bool integrate_option(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
                       const int* columns, int substeps, core::Pose2& pose, contact::Frame& frame);
 
+/// integrate_option for `count` options at once (at most kOptionBatch; columns[l] and poses[l]
+/// are option l's, ok[l] its result): the planner's call. Each option's result is the one
+/// integrate_option gives it alone, bit for bit.
+inline constexpr int kOptionBatch = 4;
+void integrate_options(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
+                       const int* const* columns, int count, int substeps, core::Pose2* poses,
+                       bool* ok, contact::Frame& frame);
+
 /// φ_i + φ̇_i · (substeps · h), wrapped to [0, 1): where the option leaves leg i's shaft.
 [[nodiscard]] double advanced_phi(double phi, double speed, int substeps, double h);
 

@@ -96,8 +96,8 @@ struct PlanData::Impl {
   core::WorkerPool pool;
   int legs;
   int choices;
-  int beam;        ///< K (1 for the greedy planner)
-  int max_chunks;  ///< chunks a node's options are split into, at most
+  int beam;                            ///< K (1 for the greedy planner)
+  int max_chunks;                      ///< chunks a node's options are split into, at most
   std::vector<contact::Frame> frames;  ///< one per worker
   std::vector<long long> power;        ///< M^i, i = 0 … N
   NodeTable root;                      ///< the table of the step's start state
@@ -141,8 +141,7 @@ void validate(const PlanRobot& robot, const PlanOptions& options) {
   require_in("plan.horizon", options.horizon, ranges::kHorizon);
   require_in("plan.substeps", options.substeps, ranges::kSubsteps);
   require_in("plan.execute", options.execute, core::closed(1.0, options.substeps));
-  require_in("plan.speeds (count)", static_cast<double>(options.speeds.size()),
-             ranges::kChoices);
+  require_in("plan.speeds (count)", static_cast<double>(options.speeds.size()), ranges::kChoices);
   for (std::size_t c = 0; c < options.speeds.size(); ++c) {
     require_in("plan.speeds[" + std::to_string(c) + "]", options.speeds[c], ranges::kSpeed);
   }
@@ -160,8 +159,8 @@ void validate(const PlanRobot& robot, const PlanOptions& options) {
   const double options_count =
       std::pow(static_cast<double>(options.speeds.size()), static_cast<double>(robot.legs()));
   if (options_count > static_cast<double>(kMaxOptions)) {
-    throw core::InputError("plan.speeds", std::to_string(options.speeds.size()) +
-                                              " speeds on " + std::to_string(robot.legs()) +
+    throw core::InputError("plan.speeds", std::to_string(options.speeds.size()) + " speeds on " +
+                                              std::to_string(robot.legs()) +
                                               " legs make more than 2^24 options per step");
   }
 }
@@ -219,41 +218,59 @@ void expand_chunk(const Expansion& e, int chunk, int worker) {
   int count = 0;
   long long bad = 0;
   std::array<int, kMaxPlanLegs> digits{};
-  std::array<int, kMaxPlanLegs> columns{};
+  // kOptionBatch options integrated side by side (option_kernel.hpp): each one's result is the
+  // one it has alone, so the batches' boundaries do not matter.
+  std::array<std::array<int, kMaxPlanLegs>, kOptionBatch> columns{};
+  std::array<const int*, kOptionBatch> pointers{};
+  std::array<long long, kOptionBatch> indices{};
+  std::array<core::Pose2, kOptionBatch> poses{};
+  std::array<bool, kOptionBatch> ok{};
+  for (int l = 0; l < kOptionBatch; ++l) {
+    pointers[static_cast<std::size_t>(l)] = columns[static_cast<std::size_t>(l)].data();
+  }
   contact::Frame& frame = d.frames[static_cast<std::size_t>(worker)];
   const long long begin = chunk * e.per_chunk;
   const long long end = std::min(e.total, begin + e.per_chunk);
-  for (long long r = begin; r < end; ++r) {
-    long long option = r;
-    if (e.options.deduplicate) {
-      // Digits of r on the free legs (ascending), 0 on the swinging legs: the least option
-      // index of its class, and increasing with r.
-      digits.fill(0);
-      option = 0;
-      long long rest = r;
-      for (int k = 0; k < free; ++k) {
-        const auto leg = static_cast<std::size_t>(e.table.free_legs[static_cast<std::size_t>(k)]);
-        digits[leg] = static_cast<int>(rest % m);
-        option += digits[leg] * d.power[leg];
-        rest /= m;
+  for (long long first = begin; first < end; first += kOptionBatch) {
+    const int lanes = static_cast<int>(std::min<long long>(kOptionBatch, end - first));
+    for (int l = 0; l < lanes; ++l) {
+      const long long r = first + l;
+      long long option = r;
+      if (e.options.deduplicate) {
+        // Digits of r on the free legs (ascending), 0 on the swinging legs: the least option
+        // index of its class, and increasing with r.
+        digits.fill(0);
+        option = 0;
+        long long rest = r;
+        for (int k = 0; k < free; ++k) {
+          const auto leg = static_cast<std::size_t>(e.table.free_legs[static_cast<std::size_t>(k)]);
+          digits[leg] = static_cast<int>(rest % m);
+          option += digits[leg] * d.power[leg];
+          rest /= m;
+        }
+      } else {
+        option_digits(r, n, m, digits.data());
       }
-    } else {
-      option_digits(r, n, m, digits.data());
+      const auto u = static_cast<std::size_t>(l);
+      option_columns(e.table, digits.data(), columns[u].data());
+      indices[u] = option;
+      poses[u] = e.node.pose;
     }
-    option_columns(e.table, digits.data(), columns.data());
-    core::Pose2 pose = e.node.pose;
-    if (!integrate_option(e.robot, e.options, e.table, columns.data(), e.table.substeps, pose,
-                          frame)) {
-      ++bad;
-      continue;
+    integrate_options(e.robot, e.options, e.table, pointers.data(), lanes, e.table.substeps,
+                      poses.data(), ok.data(), frame);
+    for (int l = 0; l < lanes; ++l) {
+      const auto u = static_cast<std::size_t>(l);
+      if (!ok[u]) {
+        ++bad;
+        continue;
+      }
+      const double cost = e.node.cost + se2_distance(poses[u], e.target, e.options.rotation_length);
+      if (!std::isfinite(cost)) {
+        ++bad;
+        continue;
+      }
+      keep_best(best, count, d.beam, Candidate{cost, e.rank, indices[u], poses[u]});
     }
-    const double cost =
-        e.node.cost + se2_distance(pose, e.target, e.options.rotation_length);
-    if (!std::isfinite(cost)) {
-      ++bad;
-      continue;
-    }
-    keep_best(best, count, d.beam, Candidate{cost, e.rank, option, pose});
   }
   d.chunk_count[static_cast<std::size_t>(chunk)] = count;
   d.chunk_infeasible[static_cast<std::size_t>(chunk)] = bad;
@@ -268,10 +285,16 @@ long long expand(const PlanRobot& robot, const PlanOptions& options, const Goal&
   const int free = static_cast<int>(table.free_legs.size());
   const long long total = options.deduplicate ? d.power[static_cast<std::size_t>(free)]
                                               : d.power[static_cast<std::size_t>(d.legs)];
-  const int chunks = static_cast<int>(
-      std::clamp<long long>((total + kMinChunk - 1) / kMinChunk, 1, d.max_chunks));
-  const Expansion e{robot, options, d, table, node, rank,
-                    target_at(goal, node.t + options.horizon), total,
+  const int chunks =
+      static_cast<int>(std::clamp<long long>((total + kMinChunk - 1) / kMinChunk, 1, d.max_chunks));
+  const Expansion e{robot,
+                    options,
+                    d,
+                    table,
+                    node,
+                    rank,
+                    target_at(goal, node.t + options.horizon),
+                    total,
                     (total + chunks - 1) / chunks};
   // One reference captured: the task fits std::function's local storage (no allocation).
   d.pool.run(chunks, [&e](int chunk, int worker) { expand_chunk(e, chunk, worker); });
@@ -325,9 +348,8 @@ void plan_step(const PlanRobot& robot, const PlanOptions& options, const Goal& g
                   d.chooses.begin() + static_cast<std::ptrdiff_t>(b) * n);
         table = &d.inner;
       }
-      choice.evaluated +=
-          expand(robot, options, goal, d, *table, d.nodes[static_cast<std::size_t>(b)], b, count,
-                 choice.infeasible);
+      choice.evaluated += expand(robot, options, goal, d, *table,
+                                 d.nodes[static_cast<std::size_t>(b)], b, count, choice.infeasible);
     }
     if (count == 0) {
       // Every option of every node of this level is infeasible.
@@ -353,8 +375,8 @@ void plan_step(const PlanRobot& robot, const PlanOptions& options, const Goal& g
                                         leg_speed(options, parent_chooses, c.option, i, d.power, m),
                                         options.substeps, h);
       }
-      d.next[static_cast<std::size_t>(k)] =
-          Node{parent.t + options.horizon, c.end, c.cost, level == 1 ? c.option : parent.root_option};
+      d.next[static_cast<std::size_t>(k)] = Node{parent.t + options.horizon, c.end, c.cost,
+                                                 level == 1 ? c.option : parent.root_option};
     }
     std::swap(d.nodes, d.next);
     d.phi.swap(d.next_phi);
@@ -399,8 +421,8 @@ PlanSummary plan(const PlanRobot& robot, const PlanOptions& options, const Goal&
   PlanData data(robot, options);
   PlanSummary summary;
   PlanState state = start;
-  const double tau =
-      static_cast<double>(options.execute) * options.horizon / static_cast<double>(options.substeps);
+  const double tau = static_cast<double>(options.execute) * options.horizon /
+                     static_cast<double>(options.substeps);
   double distance_sum = 0.0;
   StepChoice choice;
   for (long long step = 0; step < options.steps; ++step) {

@@ -63,14 +63,28 @@ void kernel(benchmark::State& state) {
   }
   long long evaluations = 0;
   for (auto _ : state) {
-    for (const auto& c : columns) {
-      slipwalk::core::Pose2 pose;
-      const bool ok =
-          kFast ? integrate_option(robot, options, table, c.data(), table.substeps, pose, frame)
-                : integrate_option_reference(robot, options, table, c.data(), table.substeps, pose,
-                                             frame);
-      benchmark::DoNotOptimize(ok);
-      benchmark::DoNotOptimize(pose);
+    if constexpr (kFast) {
+      // As the planner calls it: kOptionBatch options at a time.
+      for (std::size_t o = 0; o < columns.size(); o += kOptionBatch) {
+        std::array<const int*, kOptionBatch> pointers{};
+        std::array<slipwalk::core::Pose2, kOptionBatch> poses{};
+        std::array<bool, kOptionBatch> ok{};
+        for (std::size_t l = 0; l < kOptionBatch; ++l) {
+          pointers[l] = columns[o + l].data();
+        }
+        integrate_options(robot, options, table, pointers.data(), kOptionBatch, table.substeps,
+                          poses.data(), ok.data(), frame);
+        benchmark::DoNotOptimize(ok);
+        benchmark::DoNotOptimize(poses);
+      }
+    } else {
+      for (const auto& c : columns) {
+        slipwalk::core::Pose2 pose;
+        const bool ok = integrate_option_reference(robot, options, table, c.data(), table.substeps,
+                                                   pose, frame);
+        benchmark::DoNotOptimize(ok);
+        benchmark::DoNotOptimize(pose);
+      }
     }
     evaluations += static_cast<long long>(kOptions) * table.substeps;
   }
