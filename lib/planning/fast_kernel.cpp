@@ -610,9 +610,40 @@ template <bool kRead>
   return ok;
 }
 
+/// The balance residual (SupportSummary::residual) per lane in `r`, and where each of its
+/// three parts is at most `bound` (false for NaN).
+[[gnu::always_inline]] inline Mask below(const Consts& k, const VCell& c, double bound, V& r) {
+  const double inv_mg = 1.0 / k.Mg;
+  const double inv_mgl = 1.0 / (k.Mg * k.L);
+  const V a = vabs(c.g2) * inv_mg;
+  const V b = vabs(c.g0) * inv_mgl;
+  const V d = vabs(c.g1) * inv_mgl;
+  const V ab = select(a > b, a, b);
+  r = select(ab > d, ab, d);
+  return (a <= splat(bound)) & (b <= splat(bound)) & (d <= splat(bound));
+}
+
+[[gnu::always_inline]] inline VCell select_cell(Mask m, const VCell& a, const VCell& b) {
+  return {select(m, a.h00, b.h00),         select(m, a.h01, b.h01),   select(m, a.h02, b.h02),
+          select(m, a.h11, b.h11),         select(m, a.h12, b.h12),   select(m, a.h22, b.h22),
+          select(m, a.g0, b.g0),           select(m, a.g1, b.g1),     select(m, a.g2, b.g2),
+          select(m, a.changes, b.changes), select(m, a.near, b.near), select(m, a.c, b.c),
+          select(m, a.cs0, b.cs0),         select(m, a.cs1, b.cs1),   select(m, a.css, b.css),
+          select(m, a.b0, b.b0),           select(m, a.b1, b.b1),     select(m, a.b2, b.b2)};
+}
+
 struct VPose {
   V x, y, theta, c, s;
 };
+
+/// 1/i for the series' denominators.
+constexpr std::array<double, 91> kInv = [] {
+  std::array<double, 91> a{};
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    a[i] = 1.0 / static_cast<double>(i);
+  }
+  return a;
+}();
 
 /// Mover::advance per lane (the series where |ω h / 2| < kSeriesBelow, else libm per lane).
 [[gnu::always_inline]] inline VPose vadvance(const VPose& p, V t0, V t1, V t2, double h) {
@@ -621,10 +652,13 @@ struct VPose {
   const V phi = t2 * h;
   const V half = 0.5 * phi;
   const V a2 = half * half;
-  V k = 1.0 - a2 / 6.0 * (1.0 - a2 / 20.0 * (1.0 - a2 / 42.0 * (1.0 - a2 / 72.0)));
+  // Multiplications by the reciprocals (a division costs about ten multiplications here).
+  V k = 1.0 - a2 * kInv[6] * (1.0 - a2 * kInv[20] * (1.0 - a2 * kInv[42] * (1.0 - a2 * kInv[72])));
   V sh = half * k;
-  V ch = 1.0 -
-         a2 / 2.0 * (1.0 - a2 / 12.0 * (1.0 - a2 / 30.0 * (1.0 - a2 / 56.0 * (1.0 - a2 / 90.0))));
+  V ch =
+      1.0 - a2 * 0.5 *
+                (1.0 - a2 * kInv[12] *
+                           (1.0 - a2 * kInv[30] * (1.0 - a2 * kInv[56] * (1.0 - a2 * kInv[90]))));
   const Mask series = vabs(half) < splat(kSeriesBelow);
   for (int l = 0; l < kBatch; ++l) {
     if (series[l] == 0) {
@@ -664,8 +698,14 @@ SLIPWALK_CLONES void integrate_batch_vector(const PlanRobot& robot, const NodeTa
     p.x[l] = q.x;
     p.y[l] = q.y;
     p.theta[l] = q.theta;
-    p.c[l] = std::cos(q.theta);
-    p.s[l] = std::sin(q.theta);
+    // The options of a node start from one pose: cos and sin once (the same numbers).
+    if (l > 0 && q.theta == p.theta[l - 1]) {
+      p.c[l] = p.c[l - 1];
+      p.s[l] = p.s[l - 1];
+    } else {
+      p.c[l] = std::cos(q.theta);
+      p.s[l] = std::sin(q.theta);
+    }
   }
   std::array<bool, kBatch> alive{};
   for (int l = 0; l < kBatch; ++l) {
@@ -709,9 +749,6 @@ SLIPWALK_CLONES void integrate_batch_vector(const PlanRobot& robot, const NodeTa
       }
     }
     const V zero{};
-    V n0 = v0;
-    V n1 = v1;
-    V n2 = v2;
     Mask good;
     if (s == 0) {
       // The node's support, as the scalar route: its loads, if the set read off repeats.
@@ -726,17 +763,48 @@ SLIPWALK_CLONES void integrate_batch_vector(const PlanRobot& robot, const NodeTa
       const VCell start = vpass<false>(k, f, v0, v1, v2, on, read);
       V d0, d1, d2;
       const Mask definite = vnewton(start, k.L, d0, d1, d2);
-      n0 = v0 + d0;
-      n1 = v1 + d1;
-      n2 = v2 + d2;
-      const VCell cell = vpass<true>(k, f, n0, n1, n2, on, read);
-      const double mgl = k.Mg * k.L;
-      const Mask balanced = (vabs(cell.g2) / k.Mg <= splat(kPolished)) &
-                            (vabs(cell.g0) / mgl <= splat(kPolished)) &
-                            (vabs(cell.g1) / mgl <= splat(kPolished));
+      V n0 = v0 + d0;
+      V n1 = v1 + d1;
+      V n2 = v2 + d2;
+      VCell cell = vpass<true>(k, f, n0, n1, n2, on, read);
+      V r1;
+      Mask settled =
+          definite & (cell.changes == zero) & (cell.near == zero) & below(k, cell, kPolished, r1);
+      // A second step where the first changed the contact set, or kept it and left the balance
+      // above rounding (warm_support's rule: then a step that no longer halves the residual
+      // certifies below kRoundingCap).
+      const Mask again = definite & ~settled & ((cell.changes != zero) | (cell.near == zero));
+      bool any_again = false;
+      for (int l = 0; l < kBatch; ++l) {
+        any_again = any_again || again[l] != 0;
+      }
+      if (any_again) {
+        V e0, e1, e2;
+        const Mask definite2 = vnewton(cell, k.L, e0, e1, e2);
+        const V m0 = n0 + e0;
+        const V m1 = n1 + e1;
+        const V m2 = n2 + e2;
+        std::array<V, kMaxPlanLegs> read2{};
+        const VCell cell2 = vpass<true>(k, f, m0, m1, m2, read, read2);
+        V r2;
+        V unused;
+        const Mask polished = below(k, cell2, kPolished, r2);
+        const Mask stalled =
+            (cell.changes == zero) & below(k, cell2, kRoundingCap, unused) & (r2 >= 0.5 * r1);
+        const Mask settled2 = again & definite2 & (cell2.changes == zero) & (cell2.near == zero) &
+                              (polished | stalled);
+        cell = select_cell(settled2, cell2, cell);
+        n0 = select(settled2, m0, n0);
+        n1 = select(settled2, m1, n1);
+        n2 = select(settled2, m2, n2);
+        for (int j = 0; j < n; ++j) {
+          const auto u = static_cast<std::size_t>(j);
+          read[u] = select(settled2, read2[u], read[u]);
+        }
+        settled |= settled2;
+      }
       V t0, t1, t2;
-      good = vviscous(cell, k.L, t0, t1, t2) & definite & balanced & (cell.changes == zero) &
-             (cell.near == zero);
+      good = vviscous(cell, k.L, t0, t1, t2) & settled;
       const VPose moved = vadvance(p, t0, t1, t2, table.h);
       p = {select(good, moved.x, p.x), select(good, moved.y, p.y),
            select(good, moved.theta, p.theta), select(good, moved.c, p.c),
@@ -758,6 +826,9 @@ SLIPWALK_CLONES void integrate_batch_vector(const PlanRobot& robot, const NodeTa
       if (l >= count) {
         alive[ul] = false;  // padding: nobody reads it
         continue;
+      }
+      if (counts != nullptr) {
+        ++counts->scalar;
       }
       Feet one;
       std::uint32_t bits = 0;

@@ -38,7 +38,8 @@ namespace detail {
 
 /// Which route each substep took (for the tests; counted only when asked for).
 struct FastCounts {
-  long long substeps = 0;            ///< substeps integrated
+  long long substeps = 0;  ///< substeps integrated
+  long long scalar = 0;  ///< substeps a batch lane took by the scalar route (not certified at once)
   long long support_fallbacks = 0;   ///< substeps whose support contact::spring_support decided
   long long friction_fallbacks = 0;  ///< substeps friction::solve_viscous_coulomb solved
   long long reference = 0;           ///< options handed whole to the reference (anisotropic robot)

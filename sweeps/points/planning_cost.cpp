@@ -37,8 +37,8 @@ namespace slipwalk::sweeps::points {
 namespace {
 
 const double kNaN = std::nan("");
-constexpr double kWalk = 0.2;     // m/s: the straight goal of the dedup plan
-constexpr double kMaxWork = 2e9;  // option-substeps per point, at most (~3 min)
+constexpr double kWalk = 0.2;      // m/s: the straight goal of the dedup plan
+constexpr double kMaxWork = 1e10;  // option-substeps per point, at most (bound: M^N per step)
 
 const std::vector<std::string_view> kKeys = {"legs",  "M",       "mode",    "threads",
                                              "steps", "repeats", "options", "seed"};

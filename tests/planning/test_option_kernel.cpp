@@ -155,7 +155,8 @@ TEST(OptionKernel, FastAndReferenceAgreeWhereTheSupportNeedsItsPathSearch) {
   const PlanRobot line = foot_robot({{-0.3, 0.0}, {-0.1, 0.0}, {0.1, 0.0}, {0.3, 0.0}});
   const PlanRobot square = foot_robot({{-0.3, -0.2}, {0.3, -0.2}, {0.3, 0.2}, {-0.3, 0.2}});
   const PlanRobot ahead = foot_robot({{0.2, -0.2}, {0.4, -0.2}, {0.4, 0.2}, {0.2, 0.2}});
-  for (const PlanRobot* robot : {&line, &square, &ahead}) {
+  const PlanRobot bigant = bigant_plan_robot(6);
+  for (const PlanRobot* robot : {&line, &square, &ahead, &bigant}) {
     Comparison c;
     for (int node = 0; node < 20; ++node) {
       compare_node(*robot, options, random_phi(robot->legs(), rng), 16, rng, c);
@@ -164,9 +165,9 @@ TEST(OptionKernel, FastAndReferenceAgreeWhereTheSupportNeedsItsPathSearch) {
     EXPECT_LE(c.worst, 1e-12);
     const detail::FastCounts counts = count_routes(*robot, options, 20, rng);
     std::printf(
-        "%d options, %d feasible, worst relative difference %.2e; %lld substeps, %lld "
-        "support and %lld friction fallbacks\n",
-        c.options, c.feasible, c.worst, counts.substeps, counts.support_fallbacks,
+        "%d options, %d feasible, worst relative difference %.2e; %lld substeps, %lld by the "
+        "scalar route, %lld support and %lld friction fallbacks\n",
+        c.options, c.feasible, c.worst, counts.substeps, counts.scalar, counts.support_fallbacks,
         counts.friction_fallbacks);
     if (robot == &line) {
       EXPECT_EQ(c.feasible, c.options);
@@ -178,6 +179,7 @@ TEST(OptionKernel, FastAndReferenceAgreeWhereTheSupportNeedsItsPathSearch) {
     } else {
       EXPECT_EQ(c.feasible, c.options);
       EXPECT_LT(counts.support_fallbacks, counts.substeps / 10);
+      EXPECT_LT(counts.scalar, counts.substeps / 4);
     }
   }
 }
