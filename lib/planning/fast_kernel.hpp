@@ -22,9 +22,17 @@
 //  - The SE(2) advance (core::advance) carries cos θ, sin θ along the substeps (one rotation
 //    product per substep) and evaluates sin, cos and sinc of the small half angle ω h / 2 by their
 //    Taylor series (the omitted term below 1e-20 relative for |ω h / 2| < 0.05).
+//  - kBatch options run side by side, one per lane of GCC vector types (an AVX2 clone without FMA
+//    and the portable SSE2 default, the same operations and rounding): up to two warm Newton
+//    steps, the balance and the advance per lane. A lane that does not certify there takes the
+//    scalar route (the same steps one option at a time, then the reference) for that substep.
 // The result differs from the reference only by rounding (tests/planning/test_option_kernel.cpp:
-// 1e-12 relative on end poses). Each option is integrated on its own, so its result does not
-// depend on the other options of its chunk, nor on the thread that runs it.
+// 1e-12 relative on end poses). Every lane computes with its own numbers only and the route it
+// takes depends on them only, so an option's result does not depend on the other options of its
+// batch or chunk, nor on the thread that runs it (the same bits alone or beside others).
+//
+// Cost (bench_planning, BigANT, one thread): about 25 ns per option-substep against 250 ns for the
+// reference loop; a full step of 4096 options × 20 substeps takes about 2 ms.
 #include "contact/robot.hpp"
 #include "core/se2.hpp"
 

@@ -30,7 +30,7 @@ STUDY = "ch5_planning"
 CSV = "cost.csv"
 COLUMNS = ["legs", "M", "mode", "threads", "steps", "repeats", "options_per_step",
            "infeasible_per_step", "time_ms", "time_ms_p25", "time_ms_p75", "time_ms_mean",
-           "ns_per_evaluation", "options_per_second"]
+           "cpu_ms_mean", "ns_per_evaluation", "options_per_second"]
 SUBSTEPS = 20       # T_s (planning/planner.hpp): option-substeps per option
 THESIS_STEPS = 150  # §5.5.1.1: "150 time steps" in the GPU's 1.03 s
 
@@ -40,14 +40,20 @@ def main() -> None:
     t = c.Table(c.study_file(args.data, CSV, STUDY), COLUMNS)
     if t.n == 0:
         c.fail(f"{t.path}: no data rows")
-    rows = {}
+    rows = []
     for i in range(t.n):
-        key = (str(t["mode"][i]), int(t["legs"][i]), int(t["M"][i]), int(t["threads"][i]))
-        # The first row of a key: the spec lists the dedicated block (more repeats) first.
-        rows.setdefault(key, {k: float(t[k][i]) for k in COLUMNS if k != "mode"})
+        r = {k: float(t[k][i]) for k in COLUMNS if k != "mode"}
+        r["mode"] = str(t["mode"][i])
+        rows.append(r)
 
-    def get(mode, legs=6, m=4, threads=1):
-        return rows.get((mode, legs, m, threads))
+    def get(mode, legs=6, m=4, threads=1, steps=None):
+        """The first row that matches: the spec lists the dedicated blocks (more repeats, the
+        whole plan) first."""
+        for r in rows:
+            if (r["mode"] == mode and r["legs"] == legs and r["M"] == m and r["threads"] == threads
+                    and (steps is None or r["steps"] == steps)):
+                return r
+        return None
 
     gpu_s = float(c.thesis("5.5.1.1-gpu-time"))          # 150 steps, s
     cpu_step_s = float(c.thesis("5.5.1.1-cpu-time"))     # one step, s
@@ -67,12 +73,15 @@ def main() -> None:
             v[f"full_ms_t{threads}_p75"] = full["time_ms_p75"]
             v[f"full_options_per_second_t{threads}"] = full["options_per_second"]
             v[f"full_ns_per_evaluation_core_t{threads}"] = full["ns_per_evaluation"]
+            v[f"full_ms_mean_t{threads}"] = full["time_ms_mean"]
+            v[f"full_cpu_ms_mean_t{threads}"] = full["cpu_ms_mean"]
             v["full_options"] = full["options_per_step"]
         if dedup:
             v[f"dedup_ms_t{threads}"] = dedup["time_ms"]
             v[f"dedup_ms_t{threads}_p25"] = dedup["time_ms_p25"]
             v[f"dedup_ms_t{threads}_p75"] = dedup["time_ms_p75"]
             v[f"dedup_ms_mean_t{threads}"] = dedup["time_ms_mean"]
+            v[f"dedup_cpu_ms_mean_t{threads}"] = dedup["cpu_ms_mean"]
             v[f"dedup_options_t{threads}"] = dedup["options_per_step"]
             v[f"dedup_steps_t{threads}"] = int(dedup["steps"])
             v[f"dedup_options_per_second_t{threads}"] = dedup["options_per_second"]
@@ -103,13 +112,18 @@ def main() -> None:
         v["dedup_150_steps_s_t2"] = THESIS_STEPS * v["dedup_ms_t2"] * 1e-3
 
     # ---- growth with legs and M (2 threads where measured, else 1) -----------------------------
-    legs_all = sorted({k[1] for k in rows})
-    ms_all = sorted({k[2] for k in rows})
+    legs_all = sorted({int(r["legs"]) for r in rows})
+    ms_all = sorted({int(r["M"]) for r in rows})
+    # The deduplicated step against N: plans of the same length for every N (the spec's legs
+    # block), since the options per step grow as more legs come down along a plan.
+    legs_steps = [int(r["steps"]) for r in rows if r["mode"] == "dedup" and r["legs"] > 6]
+    v["dedup_legs_steps"] = min(legs_steps) if legs_steps else None
     growth: dict = {}
     for mode in ("full", "dedup", "kernel", "reference"):
         for legs in legs_all:
             for m in ms_all:
-                r = get(mode, legs, m, 2) or get(mode, legs, m, 1)
+                steps = v["dedup_legs_steps"] if mode == "dedup" and m == 4 else None
+                r = get(mode, legs, m, 2, steps) or get(mode, legs, m, 1, steps)
                 if r:
                     growth[(mode, legs, m)] = r
                     v[f"{mode}_ms_legs{legs}_M{m}"] = r["time_ms"]
@@ -117,6 +131,15 @@ def main() -> None:
                     if mode in ("kernel", "reference"):
                         v[f"{mode}_ns_legs{legs}_M{m}"] = r["ns_per_evaluation"]
     # The extrapolated full step on 2 threads: kernel time per evaluation × M^N × T_s / 2.
+    # Against M at 6 legs: the whole plan's steps (the first matching rows).
+    by_m: dict = {}
+    for mode in ("full", "dedup"):
+        for m in ms_all:
+            r = get(mode, 6, m, 2) or get(mode, 6, m, 1)
+            if r:
+                by_m[(mode, m)] = r
+                v[f"{mode}_ms_M{m}"] = r["time_ms"]
+                v[f"{mode}_options_M{m}"] = r["options_per_step"]
     for legs in legs_all:
         r = growth.get(("kernel", legs, 4))
         if r:
@@ -129,14 +152,15 @@ def main() -> None:
     plt = c.setup_matplotlib()
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.8))
     ax = axes[0]
+    dedup_label = (f"as planned (distinct motions), median step of {v['dedup_legs_steps']}"
+                   if v["dedup_legs_steps"] else "as planned (distinct motions), median step")
     for mode, label, col, mk in (("full", "full enumeration, measured", c.VISCOUS, "o"),
-                                 ("dedup", "as planned (distinct motions), median step",
-                                  c.REFERENCE, "s")):
-        pts = sorted((legs, r["time_ms"], r["time_ms_p25"], r["time_ms_p75"])
-                     for (md, legs, m), r in growth.items() if md == mode and m == 4)
+                                 ("dedup", dedup_label, c.REFERENCE, "s")):
+        pts = sorted((legs, r["time_ms"]) for (md, legs, m), r in growth.items()
+                     if md == mode and m == 4)
         if pts:
-            x, y, lo, hi = (np.array(a) for a in zip(*pts))
-            ax.errorbar(x, y, yerr=[y - lo, hi - y], fmt=mk + "-", color=col, label=label, ms=6)
+            x, y = zip(*pts)
+            ax.plot(x, y, mk + "-", color=col, label=label, ms=6)
     ext = sorted((legs, v[f"full_extrapolated_ms_t2_legs{legs}"]) for legs in legs_all
                  if f"full_extrapolated_ms_t2_legs{legs}" in v)
     if ext:
@@ -153,8 +177,7 @@ def main() -> None:
     ax = axes[1]
     for mode, label, col, mk in (("full", "full enumeration", c.VISCOUS, "o"),
                                  ("dedup", "as planned, median step", c.REFERENCE, "s")):
-        pts = sorted((m, r["time_ms"]) for (md, legs, m), r in growth.items()
-                     if md == mode and legs == 6)
+        pts = sorted((m, r["time_ms"]) for (md, m), r in by_m.items() if md == mode)
         if pts:
             x, y = zip(*pts)
             ax.plot(x, y, mk + "-", color=col, label=label)
@@ -178,7 +201,7 @@ def main() -> None:
     ax.set_xlabel("legs N")
     ax.set_ylabel("CPU time per option-substep [ns], one thread")
     ax.set_title("(c) the inner loop")
-    ax.legend(loc="lower right", fontsize=9)
+    ax.legend(loc="center right", fontsize=9)
     from matplotlib.ticker import MaxNLocator
 
     for ax in axes:
