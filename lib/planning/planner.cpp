@@ -96,8 +96,8 @@ struct PlanData::Impl {
   core::WorkerPool pool;
   int legs;
   int choices;
-  int beam;                            ///< K (1 for the greedy planner)
-  int max_chunks;                      ///< chunks a node's options are split into, at most
+  int beam;        ///< K (1 for the greedy planner)
+  int max_chunks;  ///< chunks a node's options are split into, at most
   std::vector<contact::Frame> frames;  ///< one per worker
   std::vector<long long> power;        ///< M^i, i = 0 … N
   NodeTable root;                      ///< the table of the step's start state
@@ -141,7 +141,8 @@ void validate(const PlanRobot& robot, const PlanOptions& options) {
   require_in("plan.horizon", options.horizon, ranges::kHorizon);
   require_in("plan.substeps", options.substeps, ranges::kSubsteps);
   require_in("plan.execute", options.execute, core::closed(1.0, options.substeps));
-  require_in("plan.speeds (count)", static_cast<double>(options.speeds.size()), ranges::kChoices);
+  require_in("plan.speeds (count)", static_cast<double>(options.speeds.size()),
+             ranges::kChoices);
   for (std::size_t c = 0; c < options.speeds.size(); ++c) {
     require_in("plan.speeds[" + std::to_string(c) + "]", options.speeds[c], ranges::kSpeed);
   }
@@ -159,8 +160,8 @@ void validate(const PlanRobot& robot, const PlanOptions& options) {
   const double options_count =
       std::pow(static_cast<double>(options.speeds.size()), static_cast<double>(robot.legs()));
   if (options_count > static_cast<double>(kMaxOptions)) {
-    throw core::InputError("plan.speeds", std::to_string(options.speeds.size()) + " speeds on " +
-                                              std::to_string(robot.legs()) +
+    throw core::InputError("plan.speeds", std::to_string(options.speeds.size()) +
+                                              " speeds on " + std::to_string(robot.legs()) +
                                               " legs make more than 2^24 options per step");
   }
 }
@@ -285,16 +286,10 @@ long long expand(const PlanRobot& robot, const PlanOptions& options, const Goal&
   const int free = static_cast<int>(table.free_legs.size());
   const long long total = options.deduplicate ? d.power[static_cast<std::size_t>(free)]
                                               : d.power[static_cast<std::size_t>(d.legs)];
-  const int chunks =
-      static_cast<int>(std::clamp<long long>((total + kMinChunk - 1) / kMinChunk, 1, d.max_chunks));
-  const Expansion e{robot,
-                    options,
-                    d,
-                    table,
-                    node,
-                    rank,
-                    target_at(goal, node.t + options.horizon),
-                    total,
+  const int chunks = static_cast<int>(
+      std::clamp<long long>((total + kMinChunk - 1) / kMinChunk, 1, d.max_chunks));
+  const Expansion e{robot, options, d, table, node, rank,
+                    target_at(goal, node.t + options.horizon), total,
                     (total + chunks - 1) / chunks};
   // One reference captured: the task fits std::function's local storage (no allocation).
   d.pool.run(chunks, [&e](int chunk, int worker) { expand_chunk(e, chunk, worker); });
@@ -348,8 +343,9 @@ void plan_step(const PlanRobot& robot, const PlanOptions& options, const Goal& g
                   d.chooses.begin() + static_cast<std::ptrdiff_t>(b) * n);
         table = &d.inner;
       }
-      choice.evaluated += expand(robot, options, goal, d, *table,
-                                 d.nodes[static_cast<std::size_t>(b)], b, count, choice.infeasible);
+      choice.evaluated +=
+          expand(robot, options, goal, d, *table, d.nodes[static_cast<std::size_t>(b)], b, count,
+                 choice.infeasible);
     }
     if (count == 0) {
       // Every option of every node of this level is infeasible.
@@ -375,8 +371,8 @@ void plan_step(const PlanRobot& robot, const PlanOptions& options, const Goal& g
                                         leg_speed(options, parent_chooses, c.option, i, d.power, m),
                                         options.substeps, h);
       }
-      d.next[static_cast<std::size_t>(k)] = Node{parent.t + options.horizon, c.end, c.cost,
-                                                 level == 1 ? c.option : parent.root_option};
+      d.next[static_cast<std::size_t>(k)] =
+          Node{parent.t + options.horizon, c.end, c.cost, level == 1 ? c.option : parent.root_option};
     }
     std::swap(d.nodes, d.next);
     d.phi.swap(d.next_phi);
@@ -421,8 +417,8 @@ PlanSummary plan(const PlanRobot& robot, const PlanOptions& options, const Goal&
   PlanData data(robot, options);
   PlanSummary summary;
   PlanState state = start;
-  const double tau = static_cast<double>(options.execute) * options.horizon /
-                     static_cast<double>(options.substeps);
+  const double tau =
+      static_cast<double>(options.execute) * options.horizon / static_cast<double>(options.substeps);
   double distance_sum = 0.0;
   StepChoice choice;
   for (long long step = 0; step < options.steps; ++step) {

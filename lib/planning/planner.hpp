@@ -72,23 +72,23 @@ inline constexpr int kMaxPlanLegs = 24;
 /// The admissible plan options (validate(), the plan file reader). Generous, and chosen so that a
 /// plan cannot run without end: substeps × options × levels per step are bounded.
 namespace ranges {
-inline constexpr core::Range kHorizon = core::positive_up_to(10.0, "s");         ///< Δt
-inline constexpr core::Range kSubsteps = core::closed(1.0, 1e4);                 ///< T_s
-inline constexpr core::Range kSpeed = core::closed(-100.0, 100.0, "turns/s");    ///< φ̇ choices
-inline constexpr core::Range kChoices = core::closed(1.0, 64.0);                 ///< M
+inline constexpr core::Range kHorizon = core::positive_up_to(10.0, "s");    ///< Δt
+inline constexpr core::Range kSubsteps = core::closed(1.0, 1e4);            ///< T_s
+inline constexpr core::Range kSpeed = core::closed(-100.0, 100.0, "turns/s");  ///< φ̇ choices
+inline constexpr core::Range kChoices = core::closed(1.0, 64.0);            ///< M
 inline constexpr core::Range kRotationLength = core::closed(0.0, 1e3, "m/rad");  ///< ρ
-inline constexpr core::Range kSteps = core::closed(0.0, 1e8);                    ///< planning steps
-inline constexpr core::Range kLookahead = core::closed(1.0, 16.0);               ///< H
-inline constexpr core::Range kBeam = core::closed(1.0, 64.0);                    ///< K
+inline constexpr core::Range kSteps = core::closed(0.0, 1e8);               ///< planning steps
+inline constexpr core::Range kLookahead = core::closed(1.0, 16.0);          ///< H
+inline constexpr core::Range kBeam = core::closed(1.0, 64.0);               ///< K
 inline constexpr core::Range kThreads = core::closed(1.0, 256.0);
 }  // namespace ranges
 
 struct PlanOptions {
-  double horizon = 0.05;  ///< Δt, s: how far one option looks ahead
-  int substeps = 20;      ///< T_s ≥ 1: substeps of Δt
-  int execute = 2;        ///< T_f ∈ [1, T_s]: substeps executed per step
+  double horizon = 0.05;                           ///< Δt, s: how far one option looks ahead
+  int substeps = 20;                               ///< T_s ≥ 1: substeps of Δt
+  int execute = 2;                                 ///< T_f ∈ [1, T_s]: substeps executed per step
   std::vector<double> speeds = {-1.0, 0.0, 1.0, 2.0};  ///< the M choices of φ̇, turns/s
-  double swing_speed = 2.0;                            ///< φ̇ of a leg not in contact, turns/s
+  double swing_speed = 2.0;                        ///< φ̇ of a leg not in contact, turns/s
   ContactRule contact = ContactRule::kSupport;
   double rotation_length = 0.3;  ///< ρ, m/rad (cost.hpp)
   connection::FrictionLaw law = connection::FrictionLaw::kViscousCoulomb;
@@ -106,9 +106,9 @@ void validate(const PlanRobot& robot, const PlanOptions& options);
 
 /// Where the robot is: time, pose, shaft angles.
 struct PlanState {
-  double t = 0.0;         ///< s
-  core::Pose2 pose = {};  ///< world frame
-  Eigen::VectorXd phi;    ///< (N) shaft angles, turns, in [0, 1)
+  double t = 0.0;          ///< s
+  core::Pose2 pose = {};   ///< world frame
+  Eigen::VectorXd phi;     ///< (N) shaft angles, turns, in [0, 1)
 };
 
 /// The thesis' start (§5.5): the two tripods out of phase, φ = [0.5, 0, 0.5, 0, 0.5, 0] for
@@ -118,9 +118,9 @@ struct PlanState {
 
 /// One planning step's decision.
 struct StepChoice {
-  long long option = -1;      ///< the chosen option index (least index among equal costs)
-  double cost = 0.0;          ///< its cost: distance at t + Δt (H = 1), or the best leaf's sum
-  Eigen::VectorXd speed;      ///< (N) φ̇ each leg executes, turns/s (swinging legs: swing_speed)
+  long long option = -1;  ///< the chosen option index (least index among equal costs)
+  double cost = 0.0;      ///< its cost: distance at t + Δt (H = 1), or the best leaf's sum
+  Eigen::VectorXd speed;  ///< (N) φ̇ each leg executes, turns/s (swinging legs: swing_speed)
   std::vector<char> chooses;  ///< (N) 1 for a leg that chose (in contact by the rule), 0 swinging
   long long evaluated = 0;    ///< options integrated for this step, over all levels and nodes
   long long infeasible = 0;   ///< of these, options the model could not follow (below)
@@ -139,12 +139,12 @@ using StepSink = std::function<void(const StepRecord&)>;
 using Progress = std::function<void(long long done, long long total)>;
 
 struct PlanSummary {
-  long long steps = 0;          ///< planning steps taken
-  PlanState end;                ///< the state after the last step
-  long long evaluated = 0;      ///< options integrated, all steps
-  long long infeasible = 0;     ///< of these, infeasible
-  double mean_distance = 0.0;   ///< mean over the steps of d(pose(t), Ω^target(t)), m
-  double final_distance = 0.0;  ///< d(end pose, Ω^target(end t)), m
+  long long steps = 0;           ///< planning steps taken
+  PlanState end;                 ///< the state after the last step
+  long long evaluated = 0;       ///< options integrated, all steps
+  long long infeasible = 0;      ///< of these, infeasible
+  double mean_distance = 0.0;    ///< mean over the steps of d(pose(t), Ω^target(t)), m
+  double final_distance = 0.0;   ///< d(end pose, Ω^target(end t)), m
 };
 
 /// Buffers and threads of a planner, sized once for a robot and options: nothing is allocated
