@@ -4,6 +4,7 @@
 
 #include "contact/spring_support.hpp"
 #include "friction/solvers.hpp"
+#include "planning/fast_kernel.hpp"
 
 namespace slipwalk::planning {
 
@@ -38,6 +39,9 @@ void size_node(const PlanRobot& robot, const PlanOptions& options, NodeTable& ta
   table.chooses.assign(static_cast<std::size_t>(table.legs), 1);
   table.free_legs.clear();
   table.free_legs.reserve(static_cast<std::size_t>(table.legs));
+  table.start_contact.assign(static_cast<std::size_t>(table.legs), 0);
+  table.start_Fz = Eigen::VectorXd::Zero(table.legs);
+  table.isotropic = (robot.robot.w.array() == 0.0).all();
 }
 
 void build_node(const PlanRobot& robot, const PlanOptions& options, const Eigen::VectorXd& phi,
@@ -56,13 +60,23 @@ void build_node(const PlanRobot& robot, const PlanOptions& options, const Eigen:
       }
     }
   }
+  // The bounds of the fast route: the largest lever arm and coordinates over the table.
+  table.lever = std::sqrt(table.q.topRows<2>().colwise().squaredNorm().maxCoeff());
+  if (!(table.lever > 0.0)) {
+    table.lever = 1.0;
+  }
+  table.size_x = table.q.row(0).cwiseAbs().maxCoeff();
+  table.size_y = table.q.row(1).cwiseAbs().maxCoeff();
+  table.size_z = table.q.row(2).cwiseAbs().maxCoeff();
+  // Substep 0 is the node's configuration for every option: its spring support, once.
+  for (int i = 0; i < table.legs; ++i) {
+    scratch.q.col(i) = table.q.col(table.at(0, 0, i));
+  }
+  contact::spring_support(robot.robot, scratch);
+  detail::store_start_support(robot, scratch, table);
   // Which legs choose: the rule, at the node's configuration (substep 0, any column).
   switch (options.contact) {
     case ContactRule::kSupport:
-      for (int i = 0; i < table.legs; ++i) {
-        scratch.q.col(i) = table.q.col(table.at(0, 0, i));
-      }
-      contact::spring_support(robot.robot, scratch);
       for (int i = 0; i < table.legs; ++i) {
         table.chooses[static_cast<std::size_t>(i)] = scratch.contact[static_cast<std::size_t>(i)];
       }
@@ -96,6 +110,29 @@ void option_columns(const NodeTable& table, const int* digits, int* columns) {
 
 bool integrate_option(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
                       const int* columns, int substeps, core::Pose2& pose, contact::Frame& frame) {
+  bool ok = false;
+  integrate_options(robot, options, table, &columns, 1, substeps, &pose, &ok, frame);
+  return ok;
+}
+
+static_assert(kOptionBatch == detail::kBatch);
+
+void integrate_options(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
+                       const int* const* columns, int count, int substeps, core::Pose2* poses,
+                       bool* ok, contact::Frame& frame) {
+  if (options.law == connection::FrictionLaw::kViscousCoulomb) {
+    detail::integrate_batch(robot, options, table, columns, count, substeps, poses, ok, frame);
+    return;
+  }
+  for (int l = 0; l < count; ++l) {
+    ok[l] =
+        integrate_option_reference(robot, options, table, columns[l], substeps, poses[l], frame);
+  }
+}
+
+bool integrate_option_reference(const PlanRobot& robot, const PlanOptions& options,
+                                const NodeTable& table, const int* columns, int substeps,
+                                core::Pose2& pose, contact::Frame& frame) {
   for (int s = 0; s < substeps; ++s) {
     for (int i = 0; i < table.legs; ++i) {
       const Eigen::Index col = table.at(s, columns[i], i);

@@ -28,6 +28,19 @@ struct NodeTable {
   std::vector<char> chooses;   ///< (N) 1 for a leg that chooses its speed (the contact rule)
   std::vector<int> free_legs;  ///< the legs that choose, ascending (capacity N)
 
+  // ---- substep 0, the same for every option (q does not depend on the speeds): its spring
+  // support, solved once per node by contact::spring_support (fast_kernel.hpp) ----------------
+  bool start_ok = false;     ///< the support balanced the body (planner.hpp: else infeasible)
+  double start_alpha = 0.0;  ///< α, β, z at substep 0
+  double start_beta = 0.0;
+  double start_z = 0.0;
+  std::vector<char> start_contact;  ///< (N)
+  Eigen::VectorXd start_Fz;         ///< (N)
+  // ---- constants of the fast route over the whole table --------------------------------------
+  double lever = 1.0;  ///< L = max ‖q_xy‖: scales the 3 × 3 solves
+  double size_y = 0.0, size_x = 0.0, size_z = 0.0;  ///< max |q_y|, |q_x|, |q_z|: bound rounding
+  bool isotropic = true;  ///< every foot has w = 0 (the fast viscous balance needs it)
+
   [[nodiscard]] Eigen::Index at(int s, int column, int leg) const {
     return (static_cast<Eigen::Index>(s) * columns + column) * legs + leg;
   }
@@ -45,11 +58,27 @@ void build_node(const PlanRobot& robot, const PlanOptions& options, const Eigen:
 /// swing speed) for the others.
 void option_columns(const NodeTable& table, const int* digits, int* columns);
 
+/// The reference loop (contact::spring_support then the friction law's solver per substep, as
+/// connection::integrate): what the fast route must agree with. Same contract as integrate_option.
+bool integrate_option_reference(const PlanRobot& robot, const PlanOptions& options,
+                                const NodeTable& table, const int* columns, int substeps,
+                                core::Pose2& pose, contact::Frame& frame);
+
 /// Integrates the option whose legs move at speed columns `columns` (N) over substeps 0 …
 /// `substeps` − 1 from `pose`, which it advances. False (and the pose as far as it got) when the
-/// option is infeasible (planner.hpp). `frame` is scratch of the robot's size.
+/// option is infeasible (planner.hpp). `frame` is scratch of the robot's size. The
+/// viscous-Coulomb law takes the fast route (fast_kernel.hpp), equal to the reference to rounding;
+/// the Coulomb law the reference.
 bool integrate_option(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
                       const int* columns, int substeps, core::Pose2& pose, contact::Frame& frame);
+
+/// integrate_option for `count` options at once (at most kOptionBatch; columns[l] and poses[l]
+/// are option l's, ok[l] its result): the planner's call. Each option's result is the one
+/// integrate_option gives it alone, bit for bit.
+inline constexpr int kOptionBatch = 4;
+void integrate_options(const PlanRobot& robot, const PlanOptions& options, const NodeTable& table,
+                       const int* const* columns, int count, int substeps, core::Pose2* poses,
+                       bool* ok, contact::Frame& frame);
 
 /// φ_i + φ̇_i · (substeps · h), wrapped to [0, 1): where the option leaves leg i's shaft.
 [[nodiscard]] double advanced_phi(double phi, double speed, int substeps, double h);

@@ -218,40 +218,59 @@ void expand_chunk(const Expansion& e, int chunk, int worker) {
   int count = 0;
   long long bad = 0;
   std::array<int, kMaxPlanLegs> digits{};
-  std::array<int, kMaxPlanLegs> columns{};
+  // kOptionBatch options integrated side by side (option_kernel.hpp): each one's result is the
+  // one it has alone, so the batches' boundaries do not matter.
+  std::array<std::array<int, kMaxPlanLegs>, kOptionBatch> columns{};
+  std::array<const int*, kOptionBatch> pointers{};
+  std::array<long long, kOptionBatch> indices{};
+  std::array<core::Pose2, kOptionBatch> poses{};
+  std::array<bool, kOptionBatch> ok{};
+  for (int l = 0; l < kOptionBatch; ++l) {
+    pointers[static_cast<std::size_t>(l)] = columns[static_cast<std::size_t>(l)].data();
+  }
   contact::Frame& frame = d.frames[static_cast<std::size_t>(worker)];
   const long long begin = chunk * e.per_chunk;
   const long long end = std::min(e.total, begin + e.per_chunk);
-  for (long long r = begin; r < end; ++r) {
-    long long option = r;
-    if (e.options.deduplicate) {
-      // Digits of r on the free legs (ascending), 0 on the swinging legs: the least option
-      // index of its class, and increasing with r.
-      digits.fill(0);
-      option = 0;
-      long long rest = r;
-      for (int k = 0; k < free; ++k) {
-        const auto leg = static_cast<std::size_t>(e.table.free_legs[static_cast<std::size_t>(k)]);
-        digits[leg] = static_cast<int>(rest % m);
-        option += digits[leg] * d.power[leg];
-        rest /= m;
+  for (long long first = begin; first < end; first += kOptionBatch) {
+    const int lanes = static_cast<int>(std::min<long long>(kOptionBatch, end - first));
+    for (int l = 0; l < lanes; ++l) {
+      const long long r = first + l;
+      long long option = r;
+      if (e.options.deduplicate) {
+        // Digits of r on the free legs (ascending), 0 on the swinging legs: the least option
+        // index of its class, and increasing with r.
+        digits.fill(0);
+        option = 0;
+        long long rest = r;
+        for (int k = 0; k < free; ++k) {
+          const auto leg = static_cast<std::size_t>(e.table.free_legs[static_cast<std::size_t>(k)]);
+          digits[leg] = static_cast<int>(rest % m);
+          option += digits[leg] * d.power[leg];
+          rest /= m;
+        }
+      } else {
+        option_digits(r, n, m, digits.data());
       }
-    } else {
-      option_digits(r, n, m, digits.data());
+      const auto u = static_cast<std::size_t>(l);
+      option_columns(e.table, digits.data(), columns[u].data());
+      indices[u] = option;
+      poses[u] = e.node.pose;
     }
-    option_columns(e.table, digits.data(), columns.data());
-    core::Pose2 pose = e.node.pose;
-    if (!integrate_option(e.robot, e.options, e.table, columns.data(), e.table.substeps, pose,
-                          frame)) {
-      ++bad;
-      continue;
+    integrate_options(e.robot, e.options, e.table, pointers.data(), lanes, e.table.substeps,
+                      poses.data(), ok.data(), frame);
+    for (int l = 0; l < lanes; ++l) {
+      const auto u = static_cast<std::size_t>(l);
+      if (!ok[u]) {
+        ++bad;
+        continue;
+      }
+      const double cost = e.node.cost + se2_distance(poses[u], e.target, e.options.rotation_length);
+      if (!std::isfinite(cost)) {
+        ++bad;
+        continue;
+      }
+      keep_best(best, count, d.beam, Candidate{cost, e.rank, indices[u], poses[u]});
     }
-    const double cost = e.node.cost + se2_distance(pose, e.target, e.options.rotation_length);
-    if (!std::isfinite(cost)) {
-      ++bad;
-      continue;
-    }
-    keep_best(best, count, d.beam, Candidate{cost, e.rank, option, pose});
   }
   d.chunk_count[static_cast<std::size_t>(chunk)] = count;
   d.chunk_infeasible[static_cast<std::size_t>(chunk)] = bad;

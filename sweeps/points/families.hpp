@@ -38,6 +38,8 @@ namespace slipwalk::sweeps::points {
 [[nodiscard]] std::vector<PointKind> planning_kinds();
 /// The long run of the Coulomb solver on random stress frames, §3.4 (coulomb_long_run.cpp).
 [[nodiscard]] std::vector<PointKind> coulomb_long_run_kinds();
+/// What one step of the brute-force planner costs, §5.5 (planning_cost.cpp).
+[[nodiscard]] std::vector<PointKind> planning_cost_kinds();
 
 /// The hostile-input campaign against the binary itself (hostile_inputs_kind.cpp).
 [[nodiscard]] std::vector<PointKind> hostile_input_kinds();
