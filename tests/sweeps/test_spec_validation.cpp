@@ -48,6 +48,7 @@ const std::map<std::string, std::string>& bases() {
       {"plan_run", "goal = \"twist\"\nsteps = 2\n"},
       {"plan_summary", "goal = \"twist\"\nsteps = 2\n"},
       {"foot_path", "samples = 5\n"},
+      {"planning_cost", "mode = \"kernel\"\noptions = 8\nrepeats = 1\n"},
   };
   return all;
 }
