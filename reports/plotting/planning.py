@@ -4,8 +4,10 @@ The plans are DATA/ch5_planning/plans.csv (kind plan_run, sweeps/points/planning
 planning step per plan — the step's start state, the target there and the choice made (the plan
 CSV's columns, lib/planning/plan_csv.hpp) — and a last row, step = steps, with the state after
 the last step (option -1, speeds NaN). A plan is the rows of one (goal, law, lookahead, beam).
-A MuJoCo replay of a plan, when the replay study wrote one, is DATA/ch5_planning/replay_<goal>.csv
-(columns t, x, y, theta, x_mujoco, y_mujoco, theta_mujoco).
+A MuJoCo replay of a plan, when the replay sweep ran (DATA/ch5_planning/replay.csv, kind
+plan_replay), is its rows of the goal with label "base" and the fewest steps (300 in the full
+study: the same greedy plan as plans.csv's, which the planner makes identically on any thread
+count): columns t, x, y, theta (the plan), x_mujoco, y_mujoco, theta_mujoco.
 """
 from __future__ import annotations
 
@@ -125,12 +127,17 @@ def body_displacements(p: c.Table) -> tuple[np.ndarray, np.ndarray]:
 
 
 def replay(data: Path, goal: str) -> c.Table | None:
-    """MuJoCo's replay of a plan, when the replay study wrote it; None otherwise."""
-    path = data / STUDY / f"replay_{goal}.csv"
+    """MuJoCo's replay of the goal's plan (see above); None when there is none or no MuJoCo."""
+    path = data / STUDY / "replay.csv"
     if not path.is_file():
         return None
-    t = c.Table(path, ["t", "x", "y", "theta", "x_mujoco", "y_mujoco", "theta_mujoco"])
-    return t if t.n > 0 else None
+    t = c.Table(path, ["goal", "label", "steps", "t", "x", "y", "theta", "x_mujoco", "y_mujoco",
+                       "theta_mujoco"])
+    mine = (t.str("goal") == goal) & (t.str("label") == "base")
+    if not mine.any():
+        return None
+    r = t.subset(mine & (t["steps"] == np.min(t["steps"][mine])))  # one point: rows in time order
+    return r if r.n > 0 and np.isfinite(r["x_mujoco"]).any() else None
 
 
 def replay_summary(r: c.Table | None) -> dict:
