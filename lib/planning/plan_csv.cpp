@@ -54,6 +54,7 @@ constexpr std::array kLegColumns = {
 
 std::vector<std::string> plan_columns(const PlanRobot& robot) {
   std::vector<std::string> columns;
+  columns.reserve(kStepColumns.size() + kLegColumns.size() * robot.leg_names.size());
   for (const StepColumn& c : kStepColumns) {
     columns.emplace_back(c.name);
   }

@@ -15,8 +15,8 @@ PlanRobot bigant_plan_robot(int legs) {
   r.robot = legs == robots::kBigAntLegs ? robots::bigant_robot() : robots::bigant_robot(legs);
   r.leg_names = bigant.names;
   r.stance_half_width = 0.5 * robots::kBigAntStanceSweep;
-  r.toe = [bigant = std::move(bigant)](int leg, double phi, Eigen::Ref<Eigen::Vector3d> q,
-                                       Eigen::Ref<Eigen::Vector3d> dq_dphi) {
+  r.toe = [bigant = std::move(bigant)](int leg, double phi, const Eigen::Ref<Eigen::Vector3d>& q,
+                                       const Eigen::Ref<Eigen::Vector3d>& dq_dphi) {
     robots::bigant_toe(bigant, leg, phi, q, dq_dphi);
   };
   return r;

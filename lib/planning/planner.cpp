@@ -85,8 +85,8 @@ struct PlanData::Impl {
     }
     phi = Eigen::MatrixXd::Zero(legs, beam);
     next_phi = Eigen::MatrixXd::Zero(legs, beam);
-    chooses.assign(static_cast<std::size_t>(legs * beam), 0);
-    chunk_best.resize(static_cast<std::size_t>(max_chunks * beam));
+    chooses.assign(static_cast<std::size_t>(legs) * static_cast<std::size_t>(beam), 0);
+    chunk_best.resize(static_cast<std::size_t>(max_chunks) * static_cast<std::size_t>(beam));
     chunk_count.resize(static_cast<std::size_t>(max_chunks));
     chunk_infeasible.resize(static_cast<std::size_t>(max_chunks));
     level_best.resize(static_cast<std::size_t>(beam));
@@ -214,7 +214,8 @@ void expand_chunk(const Expansion& e, int chunk, int worker) {
   const int n = d.legs;
   const int m = d.choices;
   const int free = static_cast<int>(e.table.free_legs.size());
-  Candidate* best = &d.chunk_best[static_cast<std::size_t>(chunk * d.beam)];
+  Candidate* best =
+      &d.chunk_best[static_cast<std::size_t>(chunk) * static_cast<std::size_t>(d.beam)];
   int count = 0;
   long long bad = 0;
   std::array<int, kMaxPlanLegs> digits{};
@@ -299,7 +300,8 @@ long long expand(const PlanRobot& robot, const PlanOptions& options, const Goal&
   // One reference captured: the task fits std::function's local storage (no allocation).
   d.pool.run(chunks, [&e](int chunk, int worker) { expand_chunk(e, chunk, worker); });
   for (int c = 0; c < chunks; ++c) {
-    const Candidate* best = &d.chunk_best[static_cast<std::size_t>(c * d.beam)];
+    const Candidate* best =
+        &d.chunk_best[static_cast<std::size_t>(c) * static_cast<std::size_t>(d.beam)];
     for (int k = 0; k < d.chunk_count[static_cast<std::size_t>(c)]; ++k) {
       keep_best(d.level_best.data(), level_count, d.beam, best[k]);
     }
@@ -369,7 +371,8 @@ void plan_step(const PlanRobot& robot, const PlanOptions& options, const Goal& g
     for (int k = 0; k < count; ++k) {
       const Candidate& c = d.level_best[static_cast<std::size_t>(k)];
       const Node& parent = d.nodes[static_cast<std::size_t>(c.parent)];
-      const char* parent_chooses = &d.chooses[static_cast<std::size_t>(c.parent * n)];
+      const char* parent_chooses =
+          &d.chooses[static_cast<std::size_t>(c.parent) * static_cast<std::size_t>(n)];
       for (int i = 0; i < n; ++i) {
         d.next_phi(i, k) = advanced_phi(d.phi(i, c.parent),
                                         leg_speed(options, parent_chooses, c.option, i, d.power, m),
