@@ -46,49 +46,7 @@ const std::vector<TableSchema>& schema() {
   return tables;
 }
 
-const TableSchema& schema_of(std::string_view name) {
-  for (const TableSchema& t : schema()) {
-    if (t.name == name) {
-      return t;
-    }
-  }
-  throw std::logic_error("plan file: no schema for a table");
-}
-
-/// The top level holds the tables of the schema only; a key of a table written at the top level
-/// is pointed to its table.
-void check_top_level(const toml::table& doc, const std::string& path) {
-  std::vector<std::string_view> names;
-  for (const TableSchema& t : schema()) {
-    names.push_back(t.name);
-  }
-  for (auto&& [k, v] : doc) {
-    const std::string_view key = k.str();
-    const bool known = std::find(names.begin(), names.end(), key) != names.end();
-    if (known && v.is_table()) {
-      continue;
-    }
-    std::string what;
-    if (known) {
-      what.append("expected a table [").append(key).append("], got ").append(scene::type_name(v));
-    } else if (v.is_table()) {
-      what.append("unknown table [").append(key).append("]");
-      if (const std::string_view guess = scene::nearest(key, names); !guess.empty()) {
-        what.append("; did you mean [").append(guess).append("]?");
-      }
-    } else {
-      what.append("unknown key '").append(key).append("' at the top level");
-      for (const TableSchema& t : schema()) {
-        if (std::find(t.keys.begin(), t.keys.end(), key) != t.keys.end()) {
-          what.append("; it belongs in [").append(t.name).append("]");
-          break;
-        }
-      }
-    }
-    what.append(" (tables: plan, goal, start)");
-    throw InputError(scene::origin_of(k.source(), path), what);
-  }
-}
+const TableSchema& schema_of(std::string_view name) { return scene::schema_table(schema(), name); }
 
 const toml::table* table_of(const toml::table& doc, std::string_view name) {
   const toml::node* node = doc.get(name);
@@ -381,7 +339,7 @@ void parse_waypoints(std::string_view text, const std::string& file, Goal& goal)
 
 PlanFile parse_plan_file(std::string_view text, const std::string& path) {
   const toml::table doc = core::parse_toml(text, path);
-  check_top_level(doc, path);
+  scene::check_top_level(doc, path, schema());
   const std::vector<TableSchema>& all = schema();
   PlanFile file;
   file.path = path;

@@ -38,53 +38,7 @@ const std::vector<TableSchema>& schema() {
   return tables;
 }
 
-const TableSchema& schema_of(std::string_view name) {
-  for (const TableSchema& t : schema()) {
-    if (t.name == name) {
-      return t;
-    }
-  }
-  throw std::logic_error("scene: no schema for a table");
-}
-
-/// The top level holds tables only, each named in the schema; a key of a table written at the top
-/// level is pointed to its table.
-void check_top_level(const toml::table& doc, const std::string& path) {
-  std::vector<std::string_view> names;
-  for (const TableSchema& t : schema()) {
-    names.push_back(t.name);
-  }
-  for (auto&& [k, v] : doc) {
-    const std::string_view key = k.str();
-    const bool known = std::find(names.begin(), names.end(), key) != names.end();
-    if (known && v.is_table()) {
-      continue;
-    }
-    std::string what;
-    if (known) {
-      what.append("expected a table [").append(key).append("], got ").append(type_name(v));
-    } else if (v.is_table()) {
-      what.append("unknown table [").append(key).append("]");
-      if (const std::string_view guess = nearest(key, names); !guess.empty()) {
-        what.append("; did you mean [").append(guess).append("]?");
-      }
-    } else {
-      what.append("unknown key '").append(key).append("' at the top level");
-      for (const TableSchema& t : schema()) {
-        if (std::find(t.keys.begin(), t.keys.end(), key) != t.keys.end()) {
-          what.append("; it belongs in [").append(t.name).append("]");
-          break;
-        }
-      }
-    }
-    what.append(" (tables: ");
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      what.append(i == 0 ? "" : ", ").append(names[i]);
-    }
-    what.append(")");
-    throw InputError(origin_of(k.source(), path), what);
-  }
-}
+const TableSchema& schema_of(std::string_view name) { return schema_table(schema(), name); }
 
 /// The table `name`, or nullptr when the file has none.
 const toml::table* table_of(const toml::table& doc, std::string_view name) {
@@ -198,7 +152,7 @@ terrain::Terrain read_terrain(const TableReader& t) {
 
 Scene parse_scene(std::string_view text, const std::string& path) {
   const toml::table doc = core::parse_toml(text, path);
-  check_top_level(doc, path);
+  check_top_level(doc, path, schema());
   const std::vector<TableSchema>& all = schema();
   Scene scene;
   scene.path = path;

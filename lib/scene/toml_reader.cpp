@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
@@ -221,5 +223,53 @@ std::string TableReader::origin(const toml::node& node) const {
 }
 
 std::string TableReader::origin() const { return origin_of(table_.source(), path_); }
+
+const TableSchema& schema_table(const std::vector<TableSchema>& schema, std::string_view name) {
+  for (const TableSchema& t : schema) {
+    if (t.name == name) {
+      return t;
+    }
+  }
+  throw std::logic_error("no schema for the table [" + std::string(name) + "]");
+}
+
+void check_top_level(const toml::table& doc, const std::string& path,
+                     const std::vector<TableSchema>& schema) {
+  std::vector<std::string_view> names;
+  names.reserve(schema.size());
+  for (const TableSchema& t : schema) {
+    names.push_back(t.name);
+  }
+  for (auto&& [k, v] : doc) {
+    const std::string_view key = k.str();
+    const bool known = std::find(names.begin(), names.end(), key) != names.end();
+    if (known && v.is_table()) {
+      continue;
+    }
+    std::string what;
+    if (known) {
+      what.append("expected a table [").append(key).append("], got ").append(type_name(v));
+    } else if (v.is_table()) {
+      what.append("unknown table [").append(key).append("]");
+      if (const std::string_view guess = nearest(key, names); !guess.empty()) {
+        what.append("; did you mean [").append(guess).append("]?");
+      }
+    } else {
+      what.append("unknown key '").append(key).append("' at the top level");
+      for (const TableSchema& t : schema) {
+        if (std::find(t.keys.begin(), t.keys.end(), key) != t.keys.end()) {
+          what.append("; it belongs in [").append(t.name).append("]");
+          break;
+        }
+      }
+    }
+    what.append(" (tables: ");
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      what.append(i == 0 ? "" : ", ").append(names[i]);
+    }
+    what.append(")");
+    throw core::InputError(origin_of(k.source(), path), what);
+  }
+}
 
 }  // namespace slipwalk::scene

@@ -21,6 +21,17 @@ struct TableSchema {
   std::vector<std::string_view> keys;  ///< every key valid in it
 };
 
+/// The table `name` of `schema`; throws std::logic_error when the schema has none (a bug).
+[[nodiscard]] const TableSchema& schema_table(const std::vector<TableSchema>& schema,
+                                              std::string_view name);
+
+/// Checks that the top level of `doc` (read from `path`) holds only the tables of `schema`:
+/// throws core::InputError at the offending key's file:line:col for a table named in the schema
+/// that is not a table, an unknown table (the nearest name suggested) or a key at the top level
+/// (the table it belongs in named), listing the schema's tables.
+void check_top_level(const toml::table& doc, const std::string& path,
+                     const std::vector<TableSchema>& schema);
+
 /// The Levenshtein distance of two words (for "did you mean ...").
 [[nodiscard]] std::size_t edit_distance(std::string_view a, std::string_view b);
 
