@@ -49,6 +49,18 @@ void validate(const Goal& goal) {
   }
 }
 
+Goal thesis_goal(std::string_view name) {
+  for (const NamedTwist& g : kThesisGoals) {
+    if (g.name == name) {
+      Goal goal;
+      goal.twist = {g.vx, g.vy, g.omega};
+      return goal;
+    }
+  }
+  throw core::InputError("goal",
+                         "expected straight, turn or diagonal, got '" + std::string(name) + "'");
+}
+
 core::Pose2 target_at(const Goal& goal, double t) {
   if (goal.times.empty()) {
     return core::advance(goal.start, goal.twist, t);

@@ -5,6 +5,8 @@
 // thesis' three goals (walk straight at 0.2 m/s, turn in place at 0.2 rad/s, move diagonally at
 // (0.05, 0.02) m/s with the heading held) — or waypoints (t, x, y, θ) interpolated linearly.
 #include <Eigen/Core>
+#include <array>
+#include <string_view>
 #include <vector>
 
 #include "core/se2.hpp"
@@ -22,6 +24,22 @@ struct Goal {
   std::vector<double> times;
   std::vector<core::Pose2> waypoints;
 };
+
+/// The thesis' three goals (§5.5.1.2 and the captions of Figs. 5.9–5.11) as body twists
+/// (v_x, v_y, ω) held from the start pose.
+struct NamedTwist {
+  std::string_view name;
+  double vx, vy, omega;  ///< m/s, m/s, rad/s
+};
+inline constexpr std::array<NamedTwist, 3> kThesisGoals = {{
+    {"straight", 0.2, 0.0, 0.0},    ///< Fig. 5.9: walk along x at 0.2 m/s
+    {"turn", 0.0, 0.0, 0.2},        ///< Fig. 5.10: turn in place at 0.2 rad/s
+    {"diagonal", 0.05, 0.02, 0.0},  ///< Fig. 5.11: (0.05, 0.02) m/s with the heading held
+}};
+
+/// The goal of kThesisGoals named `name` from the origin; throws core::InputError("goal", ...)
+/// naming the three for another name.
+[[nodiscard]] Goal thesis_goal(std::string_view name);
 
 /// Throws core::InputError ("goal.twist", "goal.times[3]", ...) for non-finite values, sizes that
 /// disagree, fewer than two waypoints or times that do not increase.

@@ -101,17 +101,6 @@ Inputs read(const Point& point) {
   return in;
 }
 
-/// The thesis' three goals (§5.5) as body twists held from the start pose.
-Eigen::Vector3d goal_twist(const std::string& goal) {
-  if (goal == "straight") {
-    return {0.2, 0.0, 0.0};
-  }
-  if (goal == "turn") {
-    return {0.0, 0.0, 0.2};
-  }
-  return {0.05, 0.02, 0.0};  // diagonal, heading held
-}
-
 struct ReplayRow {
   long long id = 0;
   std::string goal;
@@ -242,7 +231,7 @@ void add_mujoco(const Inputs& in, const peers::mujoco::PlanReplay& replay, Rows<
   const double gap_final = std::hypot(last.x_mujoco - last.x, last.y_mujoco - last.y);
   const double yaw_gap_final = last.theta_mujoco - last.theta;
   double progress = kNaN;
-  const Eigen::Vector3d twist = goal_twist(in.goal);
+  const Eigen::Vector3d twist = planning::thesis_goal(in.goal).twist;
   if (in.goal == "turn") {
     progress = (last.theta_mujoco - first.theta_mujoco) / (last.theta - first.theta);
   } else {
@@ -283,9 +272,8 @@ Rows<ReplayRow> run(const Point& point) {
     options.law = connection::FrictionLaw::kCoulomb;
   }
   const planning::PlanState start = planning::tripod_start(robot);
-  planning::Goal goal;
+  planning::Goal goal = planning::thesis_goal(in.goal);
   goal.start = start.pose;
-  goal.twist = goal_twist(in.goal);
   const planning::PlanTrack track =
       planning::slowed(planning::plan_track(robot, options, goal, start), in.slowdown);
   Rows<ReplayRow> out = plan_rows(point, in, track);

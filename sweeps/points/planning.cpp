@@ -81,14 +81,7 @@ PlanInputs read_plan(const Point& point, std::string_view kind) {
         r.fail(key, "only with goal = \"twist\" (goal \"" + in.goal + "\" fixes the twist)");
       }
     }
-    // §5.5.1.2 and the captions of Figs. 5.9–5.11.
-    if (in.goal == "straight") {
-      in.target.twist = {0.2, 0.0, 0.0};
-    } else if (in.goal == "turn") {
-      in.target.twist = {0.0, 0.0, 0.2};
-    } else {
-      in.target.twist = {0.05, 0.02, 0.0};
-    }
+    in.target = planning::thesis_goal(in.goal);
   }
   planning::PlanOptions& o = in.options;
   o.steps = r.integer("steps", o.steps, 1, 100'000);

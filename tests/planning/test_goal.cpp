@@ -64,6 +64,14 @@ TEST(Goal, WaypointsInterpolateLinearlyAndHoldBeyondTheirEnds) {
   EXPECT_EQ(target_at(g, 99.0).y, -4.0);
 }
 
+TEST(Goal, TheThesisGoalsAreTheCaptionsOfFigures59To511AndOtherNamesAreRefused) {
+  EXPECT_EQ(thesis_goal("straight").twist, Eigen::Vector3d(0.2, 0.0, 0.0));
+  EXPECT_EQ(thesis_goal("turn").twist, Eigen::Vector3d(0.0, 0.0, 0.2));
+  EXPECT_EQ(thesis_goal("diagonal").twist, Eigen::Vector3d(0.05, 0.02, 0.0));
+  EXPECT_TRUE(thesis_goal("turn").times.empty());
+  EXPECT_THROW((void)thesis_goal("sideways"), core::InputError);
+}
+
 void expect_refused(const Goal& g, const std::string& where) {
   try {
     validate(g);
