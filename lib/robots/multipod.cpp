@@ -31,10 +31,33 @@ void validate(const UndulationGait& g) {
   detail::require_in("multipod.stiffness", g.stiffness, contact::limits::kStiffness);
 }
 
+void multipod_gait_joints(const UndulationGait& g, double t, Eigen::Ref<MultipodJoints> joints,
+                          Eigen::Ref<MultipodJoints> rates) {
+  const double omega = kTwoPi * g.frequency;
+  for (Eigen::Index i = 0; i < joints.cols(); ++i) {
+    const double phase = omega * t + static_cast<double>(i) * g.dphi;
+    const double c = std::cos(phase);
+    const double s = std::sin(phase);
+    joints.col(i) << g.yaw_amplitude * c, g.roll_amplitude * s, g.yaw_amplitude * c;
+    rates.col(i) << -g.yaw_amplitude * omega * s, g.roll_amplitude * omega * c,
+        -g.yaw_amplitude * omega * s;
+  }
+}
+
 void multipod_feet(const MultipodGeometry& geo, const UndulationGait& g, double t,
                    Eigen::Matrix3Xd& q, Eigen::Matrix3Xd& qdot) {
-  const int n = g.legs / 2;
-  const double omega = kTwoPi * g.frequency;
+  // At most 6 modules (12 legs, validate): fixed capacity, no allocation.
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> joints(3, g.legs / 2);
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> rates(3, g.legs / 2);
+  multipod_gait_joints(g, t, joints, rates);
+  multipod_feet_from_joints(geo, joints, rates, q, qdot);
+}
+
+void multipod_feet_from_joints(const MultipodGeometry& geo,
+                               const Eigen::Ref<const MultipodJoints>& joints,
+                               const Eigen::Ref<const MultipodJoints>& rates, Eigen::Matrix3Xd& q,
+                               Eigen::Matrix3Xd& qdot) {
+  const auto n = static_cast<int>(joints.cols());
   const double w = geo.foot_lateral;
   const double h = geo.foot_depth;
 
@@ -50,17 +73,14 @@ void multipod_feet(const MultipodGeometry& geo, const UndulationGait& g, double 
   double psi_sum = 0.0;
   double dpsi_sum = 0.0;
   for (int i = 0; i < n; ++i) {
-    const double phase = omega * t + static_cast<double>(i) * g.dphi;
-    const double yaw = g.yaw_amplitude * std::cos(phase);  // θ_y1,i = θ_y2,i
-    const double dyaw = -g.yaw_amplitude * omega * std::sin(phase);
     if (i > 0) {
       // From the rear yaw axis of section i−1 (reached at the end of the last iteration): back
       // along the connector, through the front yaw joint (section heading = connector + θ_y1,i),
       // back half a section to the centre of section i.
       const double conn_psi = psi;  // heading of the connector (set at the end of i−1)
       const double conn_dpsi = dpsi;
-      psi = conn_psi + yaw;
-      dpsi = conn_dpsi + dyaw;
+      psi = conn_psi + joints(0, i);  // θ_y1,i
+      dpsi = conn_dpsi + rates(0, i);
       c -= geo.connector * heading(conn_psi) + 0.5 * geo.section * heading(psi);
       dc -= geo.connector * conn_dpsi * normal(conn_psi) + 0.5 * geo.section * dpsi * normal(psi);
     }
@@ -72,8 +92,8 @@ void multipod_feet(const MultipodGeometry& geo, const UndulationGait& g, double 
     // The leg pair, rolled by θ_r about the section's long axis: in the section frame the left
     // foot is R_x(θ_r)(0, w, −h) = (0, w cos θ_r + h sin θ_r, w sin θ_r − h cos θ_r), the right
     // one the same with w → −w. Lateral offset ℓ along the section normal; ℓ̇ = ∂ℓ/∂θ_r · θ̇_r.
-    const double roll = g.roll_amplitude * std::sin(phase);
-    const double droll = g.roll_amplitude * omega * std::cos(phase);
+    const double roll = joints(1, i);  // θ_r,i
+    const double droll = rates(1, i);
     const double cr = std::cos(roll);
     const double sr = std::sin(roll);
     for (int side = 0; side < 2; ++side) {
@@ -91,8 +111,8 @@ void multipod_feet(const MultipodGeometry& geo, const UndulationGait& g, double 
       // section − θ_y2,i), carried into the next iteration in psi.
       c -= 0.5 * geo.section * heading(psi);
       dc -= 0.5 * geo.section * dpsi * normal(psi);
-      psi -= yaw;
-      dpsi -= dyaw;
+      psi -= joints(2, i);  // θ_y2,i
+      dpsi -= rates(2, i);
     }
   }
 

@@ -56,9 +56,26 @@ struct MultipodGeometry {
 /// Throws core::InputError("multipod.legs", ...) etc. for a gait out of range (robots.hpp).
 void validate(const UndulationGait& gait);
 
-/// Feet of the Multipod at time t in the mean body frame: q (3 × N, m) and q̇ = dq/dt (3 × N,
-/// m/s), analytic (joint rates through the chain, then the moving body frame:
-/// q̇ = R(−ψ̄)(ṗ − c̄̇) − ψ̄̇ S q_xy). Sizes must be 3 × gait.legs; no allocation.
+/// The Multipod's shape: its joint angles, one column per module i (head first), rows
+/// (θ_y1,i, θ_r,i, θ_y2,i) in rad — what the motors' encoders read. Size 3 × N/2.
+using MultipodJoints = Eigen::Matrix3Xd;
+
+/// The gait's joint angles at time t and their rates (rad/s), §5.3.2: θ_y1,i = θ_y2,i =
+/// θ_y,0 cos ψ_i, θ_r,i = θ_r,0 sin ψ_i, ψ_i = 2πft + iΔφ. Sizes must be 3 × gait.legs/2.
+void multipod_gait_joints(const UndulationGait& gait, double t, Eigen::Ref<MultipodJoints> joints,
+                          Eigen::Ref<MultipodJoints> rates);
+
+/// Feet of the Multipod in the mean body frame for any joint angles and rates: q (3 × N, m) and
+/// q̇ = dq/dt (3 × N, m/s), analytic (joint rates through the chain, then the moving body frame:
+/// q̇ = R(−ψ̄)(ṗ − c̄̇) − ψ̄̇ S q_xy). N = 2 · joints.cols(); q, qdot must be 3 × N; no
+/// allocation. θ_y1,i and θ_y2,i may differ (a measured robot's do).
+void multipod_feet_from_joints(const MultipodGeometry& geometry,
+                               const Eigen::Ref<const MultipodJoints>& joints,
+                               const Eigen::Ref<const MultipodJoints>& rates, Eigen::Matrix3Xd& q,
+                               Eigen::Matrix3Xd& qdot);
+
+/// The same along the gait at time t (multipod_gait_joints, then multipod_feet_from_joints).
+/// Sizes must be 3 × gait.legs; no allocation.
 void multipod_feet(const MultipodGeometry& geometry, const UndulationGait& gait, double t,
                    Eigen::Matrix3Xd& q, Eigen::Matrix3Xd& qdot);
 

@@ -253,6 +253,55 @@ TEST(Multipod, WithoutRollTheFootVelocitiesSumToZero) {
   }
 }
 
+TEST(Multipod, FeetFromJointsAreTheGaitsFeetWhenTheJointsAreTheGaits) {
+  // multipod_feet is the gait's joints through multipod_feet_from_joints: the same numbers.
+  const MultipodGeometry geo;
+  const UndulationGait g = fig3_11(8);
+  Eigen::Matrix3Xd joints(3, 4), rates(3, 4);
+  Eigen::Matrix3Xd q1(3, 8), qd1(3, 8), q2(3, 8), qd2(3, 8);
+  for (int k = 0; k < 20; ++k) {
+    const double t = 0.173 * k;
+    multipod_gait_joints(g, t, joints, rates);
+    multipod_feet_from_joints(geo, joints, rates, q1, qd1);
+    multipod_feet(geo, g, t, q2, qd2);
+    EXPECT_EQ(q1, q2);
+    EXPECT_EQ(qd1, qd2);
+  }
+}
+
+TEST(Multipod, FootVelocitiesFromUnequalYawJointsAreTheDerivativeOfTheFeet) {
+  // A measured robot's two yaw joints differ: along a joint path with θ_y1 ≠ θ_y2 (each joint
+  // its own frequency and phase) the analytic q̇ equals the central difference of q (h = 1e-5 s,
+  // error O(h²) ≈ 1e-9 for these rates).
+  const MultipodGeometry geo;
+  const int n = 5;
+  auto path = [n](double t, Eigen::Matrix3Xd& joints, Eigen::Matrix3Xd& rates) {
+    for (int i = 0; i < n; ++i) {
+      for (int r = 0; r < 3; ++r) {
+        const double w = 1.0 + 0.37 * r + 0.21 * i;
+        const double a = 0.3 - 0.05 * r;
+        joints(r, i) = a * std::sin(w * t + 0.7 * i + r);
+        rates(r, i) = a * w * std::cos(w * t + 0.7 * i + r);
+      }
+    }
+  };
+  Eigen::Matrix3Xd joints(3, n), rates(3, n), q(3, 2 * n), qd(3, 2 * n);
+  Eigen::Matrix3Xd qp(3, 2 * n), qm(3, 2 * n), unused(3, 2 * n);
+  const double h = 1e-5;
+  for (int k = 0; k < 10; ++k) {
+    const double t = 0.31 * k;
+    path(t, joints, rates);
+    ASSERT_GT((joints.row(0) - joints.row(2)).norm(), 0.01);
+    multipod_feet_from_joints(geo, joints, rates, q, qd);
+    path(t + h, joints, rates);
+    multipod_feet_from_joints(geo, joints, rates, qp, unused);
+    path(t - h, joints, rates);
+    multipod_feet_from_joints(geo, joints, rates, qm, unused);
+    const Eigen::Matrix3Xd fd = (qp - qm) / (2 * h);
+    EXPECT_LT((fd - qd).cwiseAbs().maxCoeff(), 1e-8) << "t " << t;
+  }
+}
+
 TEST(Multipod, StandingStraightIsARectangleOfFeet) {
   UndulationGait g = fig3_11(8);
   g.roll_amplitude = 0.0;

@@ -13,10 +13,10 @@
 #include <random>
 #include <vector>
 
-#include "connection/residual_fit.hpp"
+#include "residual/fit.hpp"
 #include "core/error.hpp"
 
-namespace slipwalk::connection {
+namespace slipwalk::residual {
 namespace {
 
 constexpr int kLegs = 8;  // Multipod-like: 2K = 16 columns
@@ -188,4 +188,4 @@ TEST(ResidualFit, RefusesTrialsThatDisagreeOrHoldNoNumbers) {
 }
 
 }  // namespace
-}  // namespace slipwalk::connection
+}  // namespace slipwalk::residual

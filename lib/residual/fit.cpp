@@ -1,4 +1,4 @@
-#include "connection/residual_fit.hpp"
+#include "residual/fit.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 
-namespace slipwalk::connection {
+namespace slipwalk::residual {
 
 namespace {
 
@@ -193,4 +193,4 @@ RidgeValidation validate_ridge(const std::vector<ResidualTrial>& trials,
   return v;
 }
 
-}  // namespace slipwalk::connection
+}  // namespace slipwalk::residual

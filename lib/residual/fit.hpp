@@ -18,7 +18,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace slipwalk::connection {
+namespace slipwalk::residual {
 
 /// The snapshots of one trial: rows of vec(q̇_xy) (n × 2K, m/s) and of the residual velocity
 /// r = g̊_true − A(q) q̇ (n × 3: v_x, v_y in m/s, ω in rad/s; body frame).
@@ -71,4 +71,4 @@ struct RidgeValidation {
 [[nodiscard]] RidgeValidation validate_ridge(const std::vector<ResidualTrial>& trials,
                                              const std::vector<double>& lambdas);
 
-}  // namespace slipwalk::connection
+}  // namespace slipwalk::residual
