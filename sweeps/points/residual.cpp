@@ -26,9 +26,10 @@
 //
 // Estimators: "pinv" (the thesis' Moore–Penrose inverse, residual::fit_residual) or "ridge"
 // (residual::fit_residual_ridge with λ chosen by leave-one-trial-out cross-validation,
-// residual::validate_ridge, over λ ∈ {0} ∪ {σ²_max · 10^−k, k = 0 … 12}, σ_max the largest
-// singular value of the training q̇ matrix: a grid that scales with the data; λ = 0 is the
-// pseudo-inverse, so the cross-validated choice is never worse on held-out trials than pinv).
+// residual::validate_ridge, over λ ∈ {0} ∪ {σ²_max · 10^k, k = −12 … 3}, σ_max the largest
+// singular value of the training q̇ matrix: a grid that scales with the data, from the
+// pseudo-inverse (λ = 0) to B ≈ 0 (λ = 1000 σ²_max shrinks every direction by at least 1000), so
+// the cross-validated choice can be either end: the thesis' fit or no residual at all).
 //
 // Trials come from a process-wide cache (residual.hpp): a trial is recorded once per process
 // whichever kinds and sweeps ask for it. Without MuJoCo every point fails and says why.
@@ -83,7 +84,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// for it.
 constexpr int kLegs = 8;
 constexpr int kModules = kLegs / 2;
-constexpr std::size_t kJoints = 3 * kModules;
+constexpr auto kJoints = static_cast<std::size_t>(3 * kModules);
 
 #ifdef SLIPWALK_HAVE_MUJOCO
 /// MuJoCo's Multipod with the key's asymmetry, walking the §5.3.2 gait.
@@ -595,8 +596,8 @@ residual::ResidualFit fit(const std::vector<residual::TemplatePrediction>& train
   }
   const double s_max = pinv.singular_values.size() > 0 ? pinv.singular_values(0) : 0.0;
   std::vector<double> lambdas = {0.0};
-  for (int k = 12; k >= 0; --k) {
-    lambdas.push_back(s_max * s_max * std::pow(10.0, -k));
+  for (int k = -12; k <= 3; ++k) {
+    lambdas.push_back(s_max * s_max * std::pow(10.0, k));
   }
   const residual::RidgeValidation v = residual::validate_ridge(trials, lambdas);
   return residual::fit_residual_ridge(trials, v.best);

@@ -16,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "residual/template.hpp"
@@ -35,7 +36,14 @@ struct MultipodTrialKey {
   double sample_rate = 125.0;  ///< Hz, the motion capture's
   int legs = 8;                ///< 2 · modules
 
-  auto operator<=>(const MultipodTrialKey&) const = default;
+  bool operator==(const MultipodTrialKey&) const = default;
+  /// Lexicographic over the fields (the cache's order).
+  friend bool operator<(const MultipodTrialKey& a, const MultipodTrialKey& b) {
+    return std::tie(a.dphi_pi, a.frequency, a.cycles, a.seed, a.asymmetry, a.settle, a.timestep,
+                    a.sample_rate, a.legs) < std::tie(b.dphi_pi, b.frequency, b.cycles, b.seed,
+                                                      b.asymmetry, b.settle, b.timestep,
+                                                      b.sample_rate, b.legs);
+  }
 };
 
 /// Δφ/π rounded to 12 decimals, so that a Δφ of a spec's linspace axis (0.2 + 5 · 0.064 =

@@ -83,7 +83,7 @@ TEST(ResidualPoints, ChecksRefuseBadParametersAtTheValue) {
   expect_refused_at_last_line("multipod_trial", "dphi_pi = 2.5\n");
   expect_refused_at_last_line("multipod_trial", "frequency = 0.0\n");
   expect_refused_at_last_line("multipod_trial", "skip_cycles = 8\n");
-  expect_refused_at_last_line("multipod_trial", "asymmetry = 2.0\n");
+  expect_refused_at_last_line("multipod_trial", "asymmetry = 2.5\n");
   expect_refused_at_last_line("multipod_trial", "seed = 0.5\n");
   expect_refused_at_last_line("multipod_trial", "sample_rate = 1001\n");
   expect_refused_at_last_line("multipod_trial", "timestep = 0.01\n");
