@@ -84,7 +84,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// for it.
 constexpr int kLegs = 8;
 constexpr int kModules = kLegs / 2;
-constexpr auto kJoints = static_cast<std::size_t>(3 * kModules);
+constexpr std::size_t kJoints = 12;  // θ_y1, θ_r, θ_y2 of each module
+static_assert(kJoints == 3 * static_cast<std::size_t>(kModules));
 
 #ifdef SLIPWALK_HAVE_MUJOCO
 /// MuJoCo's Multipod with the key's asymmetry, walking the §5.3.2 gait.
