@@ -86,10 +86,10 @@ TEST(Template, PredictedQdotAndModelVelocityAreTheAnalyticOnesTimesTheCentralDif
 }
 
 TEST(Template, MeasuredTwistMatchesTheTemplateToSecondOrderInTheSampleInterval) {
-  // B = 0: the measured twist is the template's. Bound, where the twist is smooth: the two
-  // central differences err by dt²/6 times a third derivative; the twist carries harmonics of
-  // the gait (the contacts change several times a cycle), and we bound its third derivative by
-  // (√6 ω)² ω max|g̊|/ω, i.e. |v_true − v_model| ≤ (ω dt)² max|g̊| (measured: a fifth of it).
+  // B = 0: the measured twist is the template's. Bound, where the twist is smooth: both central
+  // differences err by dt²/6 times the twist's second derivative; the twist carries harmonics of
+  // the gait (contacts change several times a cycle), and harmonics up to √6 ω give
+  // |g̊''| ≤ 6 ω² max|g̊|, i.e. |v_true − v_model| ≤ (ω dt)² max|g̊| (measured: a fifth of it).
   const TemplateRobot model = multipod_template(kLegs);
   std::array<double, 2> error{};
   for (int r = 0; r < 2; ++r) {
