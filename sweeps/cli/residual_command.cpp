@@ -145,7 +145,8 @@ struct ResidualFitCommand {
       throw InputError(
           "--trials",
           std::to_string(snapshots) + " snapshots" + (skip > 0.0 ? " (after --skip)" : "") +
-              " from " + std::to_string(trials.size()) + " trials; B of " + std::to_string(legs) +
+              " from " + std::to_string(trials.size()) +
+              (trials.size() == 1 ? " trial" : " trials") + "; B of " + std::to_string(legs) +
               " legs has " + std::to_string(columns) + " columns, the fit needs at least " +
               std::to_string(columns) + " snapshots");
     }
