@@ -36,7 +36,7 @@ TemplatePrediction predict(const TemplateRobot& model, const MotionTrial& trial)
   out.t = trial.t.segment(1, m);
   out.v_true.resize(m, 3);
   out.v_model.resize(m, 3);
-  out.qdot.resize(m, 2 * legs);
+  out.qdot.resize(m, Eigen::Index{2} * legs);
   out.contacts.resize(m);
 
   // Everything a sample needs is allocated once here; the loop does not allocate.
@@ -74,7 +74,7 @@ TemplatePrediction predict(const TemplateRobot& model, const MotionTrial& trial)
     }
     Eigen::Vector3d v = Eigen::Vector3d::Zero();
     int on = 0;
-    for (int k = 0; k < legs; ++k) {
+    for (Eigen::Index k = 0; k < legs; ++k) {
       const double qx = frame.qdot(0, k);
       const double qy = frame.qdot(1, k);
       v += frame.A.col(2 * k) * qx + frame.A.col(2 * k + 1) * qy;

@@ -173,7 +173,7 @@ MotionTrial finish(Pending& p, const Layout& layout, const std::string& file,
                          " samples; a trial needs at least " + std::to_string(kMinTrialSamples) +
                          " (central differences)");
   }
-  const Eigen::Index m = 3 * layout.modules();
+  const Eigen::Index m = Eigen::Index{3} * layout.modules();
   trial.t = Eigen::Map<const Eigen::VectorXd>(p.t.data(), n);
   trial.pose = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
       p.pose.data(), n, 3);
@@ -285,7 +285,6 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
         }
         pending = Pending{};
         pending.id = std::string(id);
-        open = true;
       }
     }
     open = true;

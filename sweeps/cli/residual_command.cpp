@@ -140,7 +140,7 @@ struct ResidualFitCommand {
       trial_json.push_back(
           {{"label", t.label}, {"id", t.id}, {"samples", t.samples()}, {"snapshots", kept}});
     }
-    const Eigen::Index columns = 2 * legs;
+    const Eigen::Index columns = Eigen::Index{2} * legs;
     if (snapshots < columns) {
       throw InputError(
           "--trials",
