@@ -18,10 +18,12 @@
 //   yaw1_i, roll_i, yaw2_i   rad, module i's joints θ_y1,i, θ_r,i, θ_y2,i (i = 1 at the head;
 //            signs as robots/multipod.hpp)
 //
-// M modules make a robot of 2M legs (M ∈ {3, 4, 5, 6}). Columns may come in any order; other
-// columns are ignored, except `id`: a file with an `id` column holds several trials, one per
-// id (rows of one id together, in time order), which is how a sweep's CSV of trials
-// (kind multipod_trial) reads as trial files.
+// M modules make a robot of 2M legs (M ∈ {3, 4, 5, 6}); x, y must lie in ±1e3 m and theta and
+// the joint angles in ±1e6 rad (contact::limits, so that sines and cosines keep their accuracy).
+// Columns may come in any order; a name starting yaw1_, roll_ or yaw2_ must end in a module
+// number 1..6; other columns are ignored (they may hold text), except `id`: a file with an `id`
+// column holds several trials, one per id (rows of one id together, in time order), which is how a
+// sweep's CSV of trials (kind multipod_trial) reads as trial files.
 #include <Eigen/Core>
 #include <filesystem>
 #include <ostream>
