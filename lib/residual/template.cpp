@@ -62,8 +62,16 @@ TemplatePrediction predict(const TemplateRobot& model, const MotionTrial& trial)
       }
     }
     robots::multipod_feet_from_joints(model.geometry, joints, rates, frame.q, frame.qdot);
-    // The template's body velocity A(q) q̇ (eq. 3.20) from its spring support (§3.3).
-    contact::spring_support(model.robot, frame);
+    // The template's body velocity A(q) q̇ (eq. 3.20) from its spring support (§3.3). Joints
+    // that jump between samples make feet faster than the model takes (contact::limits): bad
+    // input at this sample's row, not a failure of the model.
+    try {
+      contact::spring_support(model.robot, frame);  // checks the frame first
+    } catch (const core::InputError& e) {
+      throw core::InputError(
+          trial.where(j),
+          std::string("the joints' central differences give the template ") + e.what());
+    }
     connection::local_connection(model.robot, frame);
     if (frame.support.status == contact::SupportSummary::Status::kNonFinite ||
         !frame.A.allFinite()) {

@@ -40,6 +40,11 @@ struct MotionTrial {
   Eigen::MatrixXd joints;  ///< (n × 3M) module i's θ_y1, θ_r, θ_y2 in columns 3i, 3i+1, 3i+2
   std::string id;          ///< the trial's `id` cell when read from a file with an id column
   std::string source;      ///< "file:line" of the header that named the columns, when read
+  /// (n) "file:line" of each sample's row when read from a file (empty otherwise): where an
+  /// error about one sample points.
+  std::vector<std::string> rows;
+  /// Where sample j came from: its row's file:line, or "<label>, sample j (t = … s)".
+  [[nodiscard]] std::string where(Eigen::Index j) const;
 
   [[nodiscard]] Eigen::Index samples() const { return t.size(); }
   [[nodiscard]] int modules() const { return static_cast<int>(joints.cols() / 3); }

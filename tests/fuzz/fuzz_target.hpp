@@ -47,6 +47,7 @@ Outcome residual(std::string_view bytes);        ///< scene::parse_residual (a B
 Outcome spring_support(std::string_view bytes);  ///< contact::spring_support on a decoded frame
 Outcome coulomb(std::string_view bytes);         ///< friction::solve_coulomb on a decoded frame
 Outcome plan_file(std::string_view bytes);       ///< planning::parse_plan_file, to_json
+Outcome trial(std::string_view bytes);           ///< residual::parse_trials, predict
 
 }  // namespace slipwalk::fuzz
 

@@ -24,6 +24,7 @@
 #include <numbers>
 #include <numeric>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -227,6 +228,23 @@ TEST(Template, ATrialOfAnotherRobotIsRefusedByItsLabel) {
   MotionTrial broken = s.trial;
   broken.t(2) = broken.t(1);
   EXPECT_THROW((void)predict(multipod_template(kLegs), broken), core::InputError);
+}
+
+TEST(Template, AJointThatJumpsBetweenSamplesIsBadInputAtItsRowNotACrash) {
+  // A roll angle of 1e5 rad in one row is a number the file may hold, but its central
+  // difference moves the feet at ~1e5 m/s, outside the model's range: the row is named.
+  const testing::SyntheticTrial s = trial(125.0, 1.0, 0.2);
+  std::ostringstream text;
+  write_trial(text, s.trial);
+  std::vector<MotionTrial> read = parse_trials(text.str(), "jump.csv");
+  ASSERT_EQ(read.size(), 1U);
+  read[0].joints(10, 1) = 1e5;
+  try {
+    (void)predict(multipod_template(kLegs), read[0]);
+    ADD_FAILURE() << "a jump of 1e5 rad in one sample";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.where(), "jump.csv:11") << e.what();  // sample 9's row (header on line 1)
+  }
 }
 
 }  // namespace
