@@ -98,18 +98,24 @@ struct MultipodPeerSpec {
   int legs = 8;                                     ///< N ∈ {6, 8, 10, 12} (M = N/2 modules)
   robots::MultipodGeometry geometry;                ///< m, as the template's
   MultipodAsymmetry asymmetry = symmetric_legs(8);  ///< (N) per-leg properties
-  double weight = 8.0;         ///< N, Mg: the template's N newtons; valid: > the parts below
-  double gravity = 9.81;       ///< m/s²
-  double timestep = 0.001;     ///< s; valid: (0, 0.002] (the contact's 5 ms needs 2 steps)
-  int iterations = 50;         ///< Newton solver iterations; valid: ≥ 1
-  double tolerance = 1e-10;    ///< solver tolerance; valid: > 0
-  double kp = 200.0;           ///< N·m/rad, every motor's position gain; valid: > 0
+  double weight = 8.0;       ///< N, Mg: the template's N newtons; valid: > the parts below
+  double gravity = 9.81;     ///< m/s²
+  double timestep = 0.001;   ///< s; valid: (0, 0.002] (the contact's 5 ms needs 2 steps)
+  int iterations = 50;       ///< Newton solver iterations; valid: ≥ 1
+  double tolerance = 1e-10;  ///< solver tolerance; valid: > 0
+  /// N·m/rad, every motor's position gain; valid: > 0. Stiff enough that the feet's loads bend a
+  /// roll joint by ~0.001 rad; the armature keeps √(kp/armature) · timestep ≈ 0.45, well inside
+  /// the explicit gain's stability limit of 2.
+  double kp = 200.0;
   double joint_damping = 1.0;  ///< N·m·s/rad, every motor joint; valid: ≥ 0
   double torque_limit = 0.0;   ///< N·m, each motor's most torque (0: unlimited); valid: ≥ 0
-  double armature = 0.001;    ///< kg·m², every motor joint (a geared servo's rotor); valid: ≥ 0
-  double leg_damping = 15.0;  ///< N·s/m, each leg spring; valid: ≥ 0
-  double foot_radius = 0.01;  ///< m; valid: > 0, < foot_depth
-  double foot_mass = 0.01;    ///< kg, each foot (below the spring); valid: > 0
+  double armature = 0.001;  ///< kg·m², every motor joint (a geared servo's rotor); valid: ≥ 0
+  /// N·s/m, each leg spring; valid: ≥ 0. A damping ratio ≈ 0.5 for the body bouncing on its
+  /// stance springs (4 × 15 against 2 √(4 K · Mg/g) ≈ 113): with 5 N·s/m the robot hops at 2.4 Hz
+  /// hard enough to turn over at some Δφ; leaf springs with rubber feet are well damped anyway.
+  double leg_damping = 15.0;
+  double foot_radius = 0.01;        ///< m; valid: > 0, < foot_depth
+  double foot_mass = 0.01;          ///< kg, each foot (below the spring); valid: > 0
   double leg_pair_mass = 0.04;      ///< kg, each module's leg pair (above the springs); valid: > 0
   double connector_mass = 0.02;     ///< kg, each connector; valid: > 0
   double stub_mass = 0.01;          ///< kg, the head and tail stubs; valid: > 0
