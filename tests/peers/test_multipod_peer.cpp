@@ -372,8 +372,8 @@ TEST(MultipodPeer, TheSymmetricRobotWalksStraightAndTheAsymmetricOnesDrift) {
   // symmetric robot's side velocity and yaw rate average out over a cycle; an asymmetric robot's
   // need not. Drift: the sideways speed of the robot's ends, |v_y| + |ω| L/2 with its length
   // L ≈ 0.43 m, against the forward speed. The first cycle is a transient and is left out. Four
-  // asymmetric robots (seeds 1–4): they drift by 5 % of their forward speed on average (in our runs
-  // 1–15 % each), the symmetric one by under 1 %.
+  // asymmetric robots (seeds 1–4): in our runs they drift by 2.5, 5, 10 and 9 % of their forward
+  // speed (6.7 % on average; seeds 5 and 6 by 43 and 26 %), the symmetric one by 0.05 %.
   const robots::UndulationGait gait = gait8(0.6, 1.0);
   const TrialOptions options{4.0, 125.0, 0.5};
   const auto drift = [&](std::uint64_t seed, double scale) {
@@ -389,7 +389,7 @@ TEST(MultipodPeer, TheSymmetricRobotWalksStraightAndTheAsymmetricOnesDrift) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     asymmetric += drift(seed, 1.0) / 4.0;
   }
-  EXPECT_GT(asymmetric, 0.05);
+  EXPECT_GT(asymmetric, 0.04);
 #endif
 }
 
