@@ -36,7 +36,7 @@ TemplatePrediction predict(const TemplateRobot& model, const MotionTrial& trial)
   out.t = trial.t.segment(1, m);
   out.v_true.resize(m, 3);
   out.v_model.resize(m, 3);
-  out.qdot.resize(m, 2 * legs);
+  out.qdot.resize(m, Eigen::Index{2} * legs);
   out.contacts.resize(m);
 
   // Everything a sample needs is allocated once here; the loop does not allocate.
@@ -62,8 +62,16 @@ TemplatePrediction predict(const TemplateRobot& model, const MotionTrial& trial)
       }
     }
     robots::multipod_feet_from_joints(model.geometry, joints, rates, frame.q, frame.qdot);
-    // The template's body velocity A(q) q̇ (eq. 3.20) from its spring support (§3.3).
-    contact::spring_support(model.robot, frame);
+    // The template's body velocity A(q) q̇ (eq. 3.20) from its spring support (§3.3). Joints
+    // that jump between samples make feet faster than the model takes (contact::limits): bad
+    // input at this sample's row, not a failure of the model.
+    try {
+      contact::spring_support(model.robot, frame);  // checks the frame first
+    } catch (const core::InputError& e) {
+      throw core::InputError(
+          trial.where(j),
+          std::string("the joints' central differences give the template ") + e.what());
+    }
     connection::local_connection(model.robot, frame);
     if (frame.support.status == contact::SupportSummary::Status::kNonFinite ||
         !frame.A.allFinite()) {
@@ -74,7 +82,7 @@ TemplatePrediction predict(const TemplateRobot& model, const MotionTrial& trial)
     }
     Eigen::Vector3d v = Eigen::Vector3d::Zero();
     int on = 0;
-    for (int k = 0; k < legs; ++k) {
+    for (Eigen::Index k = 0; k < legs; ++k) {
       const double qx = frame.qdot(0, k);
       const double qy = frame.qdot(1, k);
       v += frame.A.col(2 * k) * qx + frame.A.col(2 * k + 1) * qy;

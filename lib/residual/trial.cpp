@@ -155,8 +155,9 @@ Layout read_header(std::string_view content, const std::string& where,
 struct Pending {
   std::string id;
   std::vector<double> t;
-  std::vector<double> pose;    // 3 per sample
-  std::vector<double> joints;  // 3M per sample
+  std::vector<double> pose;       // 3 per sample
+  std::vector<double> joints;     // 3M per sample
+  std::vector<std::string> rows;  // file:line per sample
   long long last_line = 0;
 };
 
@@ -166,6 +167,7 @@ MotionTrial finish(Pending& p, const Layout& layout, const std::string& file,
   trial.label = layout.id >= 0 ? file + ", id " + p.id : file;
   trial.id = p.id;
   trial.source = header_at;
+  trial.rows = std::move(p.rows);
   const auto n = static_cast<Eigen::Index>(p.t.size());
   if (n < kMinTrialSamples) {
     throw InputError(file + ":" + std::to_string(p.last_line),
@@ -173,7 +175,7 @@ MotionTrial finish(Pending& p, const Layout& layout, const std::string& file,
                          " samples; a trial needs at least " + std::to_string(kMinTrialSamples) +
                          " (central differences)");
   }
-  const Eigen::Index m = 3 * layout.modules();
+  const Eigen::Index m = Eigen::Index{3} * layout.modules();
   trial.t = Eigen::Map<const Eigen::VectorXd>(p.t.data(), n);
   trial.pose = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
       p.pose.data(), n, 3);
@@ -184,6 +186,14 @@ MotionTrial finish(Pending& p, const Layout& layout, const std::string& file,
 }
 
 }  // namespace
+
+std::string MotionTrial::where(Eigen::Index j) const {
+  if (j >= 0 && static_cast<std::size_t>(j) < rows.size()) {
+    return rows[static_cast<std::size_t>(j)];
+  }
+  const std::string at = j >= 0 && j < t.size() ? " (t = " + core::format_double(t(j)) + " s)" : "";
+  return (label.empty() ? std::string("the trial") : label) + ", sample " + std::to_string(j) + at;
+}
 
 void validate(const MotionTrial& trial) {
   const std::string where = label_of(trial);
@@ -285,7 +295,6 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
         }
         pending = Pending{};
         pending.id = std::string(id);
-        open = true;
       }
     }
     open = true;
@@ -297,6 +306,7 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
                            core::format_double(pending.t.back()));
     }
     pending.t.push_back(t);
+    pending.rows.push_back(where);
     for (std::size_t p = 1; p < kPoseColumn.size(); ++p) {
       const double v = number(layout->pose[p], kPoseColumn[p]);
       const std::string_view cell = trim(cells[static_cast<std::size_t>(layout->pose[p])]);

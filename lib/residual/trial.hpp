@@ -18,10 +18,12 @@
 //   yaw1_i, roll_i, yaw2_i   rad, module i's joints θ_y1,i, θ_r,i, θ_y2,i (i = 1 at the head;
 //            signs as robots/multipod.hpp)
 //
-// M modules make a robot of 2M legs (M ∈ {3, 4, 5, 6}). Columns may come in any order; other
-// columns are ignored, except `id`: a file with an `id` column holds several trials, one per
-// id (rows of one id together, in time order), which is how a sweep's CSV of trials
-// (kind multipod_trial) reads as trial files.
+// M modules make a robot of 2M legs (M ∈ {3, 4, 5, 6}); x, y must lie in ±1e3 m and theta and
+// the joint angles in ±1e6 rad (contact::limits, so that sines and cosines keep their accuracy).
+// Columns may come in any order; a name starting yaw1_, roll_ or yaw2_ must end in a module
+// number 1..6; other columns are ignored (they may hold text), except `id`: a file with an `id`
+// column holds several trials, one per id (rows of one id together, in time order), which is how a
+// sweep's CSV of trials (kind multipod_trial) reads as trial files.
 #include <Eigen/Core>
 #include <filesystem>
 #include <ostream>
@@ -38,6 +40,11 @@ struct MotionTrial {
   Eigen::MatrixXd joints;  ///< (n × 3M) module i's θ_y1, θ_r, θ_y2 in columns 3i, 3i+1, 3i+2
   std::string id;          ///< the trial's `id` cell when read from a file with an id column
   std::string source;      ///< "file:line" of the header that named the columns, when read
+  /// (n) "file:line" of each sample's row when read from a file (empty otherwise): where an
+  /// error about one sample points.
+  std::vector<std::string> rows;
+  /// Where sample j came from: its row's file:line, or "<label>, sample j (t = … s)".
+  [[nodiscard]] std::string where(Eigen::Index j) const;
 
   [[nodiscard]] Eigen::Index samples() const { return t.size(); }
   [[nodiscard]] int modules() const { return static_cast<int>(joints.cols() / 3); }

@@ -140,12 +140,13 @@ struct ResidualFitCommand {
       trial_json.push_back(
           {{"label", t.label}, {"id", t.id}, {"samples", t.samples()}, {"snapshots", kept}});
     }
-    const Eigen::Index columns = 2 * legs;
+    const Eigen::Index columns = Eigen::Index{2} * legs;
     if (snapshots < columns) {
       throw InputError(
           "--trials",
           std::to_string(snapshots) + " snapshots" + (skip > 0.0 ? " (after --skip)" : "") +
-              " from " + std::to_string(trials.size()) + " trials; B of " + std::to_string(legs) +
+              " from " + std::to_string(trials.size()) +
+              (trials.size() == 1 ? " trial" : " trials") + "; B of " + std::to_string(legs) +
               " legs has " + std::to_string(columns) + " columns, the fit needs at least " +
               std::to_string(columns) + " snapshots");
     }

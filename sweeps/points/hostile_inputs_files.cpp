@@ -25,6 +25,11 @@ std::string long_scene() {
   return toml_text(s);
 }
 
+/// A plan of a few steps (BigANT walking straight, planning/plan_file.hpp).
+std::string short_plan() {
+  return "[plan]\nrobot = \"bigant\"\nsteps = 5\n\n[goal]\ntwist = [0.2, 0.0, 0.0]\n";
+}
+
 /// The commands with a file output, as (args before the output, the output option, the inputs).
 struct Command {
   std::string name;
@@ -57,7 +62,21 @@ std::vector<Command> commands(Rng& rng) {
        "--data",
        {{"grid.toml", toml_text(spec_tables(2)), ""}},
        false},
+      {"plan", {"plan", "plan.toml"}, "--out", {{"plan.toml", short_plan(), ""}}, true},
   };
+}
+
+/// The commands for which `keep` holds, in the order of commands().
+template <class Keep>
+std::vector<Command> commands_where(Rng& rng, Keep keep) {
+  std::vector<Command> all = commands(rng);
+  std::vector<Command> out;
+  for (Command& c : all) {
+    if (keep(c)) {
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
 }
 
 /// The outputs a command with output `out` leaves on success.
@@ -344,9 +363,10 @@ Case loss_case(std::uint64_t seed, long long index) {
       return c;
     }
     case 1: {  // --out on a full device
-      std::vector<Command> cmds = commands(rng);
-      cmds.erase(cmds.begin());  // not run: its sidecar would go beside /dev/full
-      cmds.pop_back();           // nor sweep: --data is a folder
+      // Not a command with a sidecar (it would go beside /dev/full), nor sweep (--data is a
+      // folder).
+      const std::vector<Command> cmds = commands_where(
+          rng, [](const Command& cmd) { return !cmd.sidecar && cmd.option != "--data"; });
       const Command& cmd = rng.pick(cmds);
       c = with_output(cmd, "/dev/full");
       c.title = cmd.name + ": --out /dev/full";
@@ -355,8 +375,8 @@ Case loss_case(std::uint64_t seed, long long index) {
       return c;
     }
     case 2: {  // the output is the input, however spelled
-      std::vector<Command> cmds = commands(rng);
-      cmds.erase(cmds.begin() + 1);  // trace reads no file
+      const std::vector<Command> cmds =
+          commands_where(rng, [](const Command& cmd) { return !cmd.inputs.empty(); });
       const Command& cmd = rng.pick(cmds);
       const InputFile& victim = rng.pick(cmd.inputs);
       std::string out = victim.name;

@@ -46,6 +46,8 @@ Outcome frame_batch(std::string_view bytes);     ///< `slipwalk model --robot`: 
 Outcome residual(std::string_view bytes);        ///< scene::parse_residual (a B file)
 Outcome spring_support(std::string_view bytes);  ///< contact::spring_support on a decoded frame
 Outcome coulomb(std::string_view bytes);         ///< friction::solve_coulomb on a decoded frame
+Outcome plan_file(std::string_view bytes);       ///< planning::parse_plan_file, to_json
+Outcome trial(std::string_view bytes);           ///< residual::parse_trials, predict
 
 }  // namespace slipwalk::fuzz
 

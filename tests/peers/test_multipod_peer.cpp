@@ -136,6 +136,11 @@ TEST(MultipodSpec, MjcfNamesEveryJointActuatorAndFoot) {
     EXPECT_NE(xml.find("name=\"" + leg + "_spring\""), std::string::npos) << leg;
     EXPECT_NE(xml.find("<geom name=\"" + leg + "_foot\""), std::string::npos) << leg;
   }
+  EXPECT_EQ(xml.find("forcerange"), std::string::npos);  // unlimited motors by default
+  MultipodPeerSpec limited = spec;
+  limited.torque_limit = 1.5;
+  EXPECT_NE(multipod_mjcf(limited).find("forcelimited=\"true\" forcerange=\"-1.5 1.5\""),
+            std::string::npos);
   EXPECT_EQ(multipod_leg_name(8, 0), "L1");
   EXPECT_EQ(multipod_leg_name(8, 7), "R4");
   // The weight is the template's N newtons, the sections carry what the other bodies leave.
@@ -335,7 +340,8 @@ TEST(MultipodPeer, ThePoseIsTheTemplatesMeanFrameOfMujocosSections) {
 TEST(MultipodPeer, TheMeasuredJointsTrackTheGait) {
   SKIP_WITHOUT_MUJOCO();
 #ifdef SLIPWALK_HAVE_MUJOCO
-  // The stated tracking (multipod_peer.hpp): RMS within 0.01 rad at 2.4 Hz, the fastest gait.
+  // The stated tracking (multipod_peer.hpp): RMS within 0.005 rad, every sample within 0.02 rad,
+  // at 2.4 Hz, the fastest gait.
   const MultipodModel model(multipod_peer_spec(8, 1, 1.0));
   MultipodData data(model);
   const robots::UndulationGait gait = gait8(2.4, 0.9);
@@ -354,8 +360,8 @@ TEST(MultipodPeer, TheMeasuredJointsTrackTheGait) {
       }
     }
   }
-  EXPECT_LT(std::sqrt(sum_sq / (12.0 * static_cast<double>(trial.samples()))), 0.01);
-  EXPECT_LT(worst, 0.05);
+  EXPECT_LT(std::sqrt(sum_sq / (12.0 * static_cast<double>(trial.samples()))), 0.005);
+  EXPECT_LT(worst, 0.02);
 #endif
 }
 
@@ -366,8 +372,8 @@ TEST(MultipodPeer, TheSymmetricRobotWalksStraightAndTheAsymmetricOnesDrift) {
   // symmetric robot's side velocity and yaw rate average out over a cycle; an asymmetric robot's
   // need not. Drift: the sideways speed of the robot's ends, |v_y| + |ω| L/2 with its length
   // L ≈ 0.43 m, against the forward speed. The first cycle is a transient and is left out. Four
-  // asymmetric robots (seeds 1–4): they drift by 5 % of their forward speed on average (in our runs
-  // 1–15 % each), the symmetric one by under 1 %.
+  // asymmetric robots (seeds 1–4): in our runs they drift by 2.5, 5, 10 and 9 % of their forward
+  // speed (6.7 % on average; seeds 5 and 6 by 43 and 26 %), the symmetric one by 0.05 %.
   const robots::UndulationGait gait = gait8(0.6, 1.0);
   const TrialOptions options{4.0, 125.0, 0.5};
   const auto drift = [&](std::uint64_t seed, double scale) {
@@ -383,7 +389,7 @@ TEST(MultipodPeer, TheSymmetricRobotWalksStraightAndTheAsymmetricOnesDrift) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     asymmetric += drift(seed, 1.0) / 4.0;
   }
-  EXPECT_GT(asymmetric, 0.05);
+  EXPECT_GT(asymmetric, 0.04);
 #endif
 }
 
@@ -406,6 +412,26 @@ TEST(MultipodPeer, TrialsRepeatExactlyAndBadOptionsThrow) {
               (void)record_trial(model, data, gait8(2.4, 0.5), {0.0, 125.0, 0.1});
             }).find("trial.cycles"),
             std::string::npos);
+  // Motors far too stiff for the timestep: the explicit position gain diverges, and the trial
+  // says so instead of returning MuJoCo's reset state.
+  MultipodPeerSpec unstable = multipod_peer_spec(8, 2, 1.0);
+  unstable.kp = 1e7;
+  unstable.armature = 0.0;
+  unstable.joint_damping = 0.0;
+  const MultipodModel bad_model(unstable);
+  MultipodData bad_data(bad_model);
+  std::string message;
+  // MuJoCo's own warning would go to stdout and MUJOCO_LOG.TXT in the working directory: muted
+  // while this trial runs (the test reads the count MuJoCo keeps in the data instead).
+  void (*const warning)(const char*) = mju_user_warning;
+  mju_user_warning = [](const char*) {};
+  try {
+    (void)record_trial(bad_model, bad_data, gait8(2.4, 0.5), options);
+  } catch (const core::ComputationError& e) {
+    message = e.what();
+  }
+  mju_user_warning = warning;
+  EXPECT_NE(message.find("MuJoCo Multipod"), std::string::npos) << message;
   robots::UndulationGait six = gait8(1.0, 1.0);
   six.legs = 6;
   EXPECT_NE(

@@ -13,8 +13,8 @@
 #include <random>
 #include <vector>
 
-#include "residual/fit.hpp"
 #include "core/error.hpp"
+#include "residual/fit.hpp"
 
 namespace slipwalk::residual {
 namespace {

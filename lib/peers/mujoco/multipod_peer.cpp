@@ -180,7 +180,8 @@ void check_options(const TrialOptions& o, double timestep) {
   }
 }
 
-/// Throws core::ComputationError when the state is not finite or a section is upside down.
+/// Throws core::ComputationError when the state is not finite (or MuJoCo reset it as bad) or a
+/// section is upside down.
 void check_state(const MultipodModel& model, const mjData* d, double t) {
   const mjModel* m = model.mj();
   bool finite = true;
@@ -190,14 +191,23 @@ void check_state(const MultipodModel& model, const mjData* d, double t) {
   for (int i = 0; i < m->nv; ++i) {
     finite = finite && std::isfinite(d->qvel[i]);
   }
+  // MuJoCo resets the state to the model's default when qpos, qvel or qacc go bad (or huge, above
+  // mjMAXVAL) and only counts a warning: a silent jump back to the start, which must not pass
+  // for a trial.
+  for (int w : {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC}) {
+    finite = finite && d->warning[w].number == 0;
+  }
   std::ostringstream msg;
+  msg.precision(4);
+  const char* phase = t < 0.0 ? " (standing before the gait)" : "";
   if (!finite) {
-    msg << "MuJoCo Multipod: the state is not finite at t = " << t << " s (the simulation blew up)";
+    msg << "MuJoCo Multipod: the state is not finite at t = " << t << " s" << phase
+        << ": the simulation blew up";
     throw core::ComputationError(msg.str());
   }
   for (int b : model.section_body) {
     if (d->xmat[9 * b + 8] < 0.0) {  // the section's z axis points down
-      msg << "MuJoCo Multipod: a section turned over at t = " << t << " s";
+      msg << "MuJoCo Multipod: a section turned over at t = " << t << " s" << phase;
       throw core::ComputationError(msg.str());
     }
   }

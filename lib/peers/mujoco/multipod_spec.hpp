@@ -61,12 +61,14 @@ struct MultipodAsymmetry {
 /// ~10–15 % in K; rubber foot pads on one floor differ in μ by similar amounts; a leg mounted 3°
 /// off and a millimetre longer than its neighbours is what assembly by hand leaves. The feet sink
 /// only Mg/(N K) = 1 mm under the robot's weight, so the length error is the strongest of the four
-/// (a leg a millimetre short carries almost nothing standing, a long one twice its share), then the
-/// mounting yaw; in our runs μ and K at these spreads change the walk little (the quasi-static
+/// (a leg a millimetre short carries far less than its share standing, a long one far more), then
+/// the mounting yaw; in our runs μ and K at these spreads change the walk little (the quasi-static
 /// robot's slipping depends on the ratios μ_k F_k, which the stance feet share). With them the
-/// robot turns and drifts sideways at Δφ = π where the symmetric one walks straight — by a few
-/// percent of its forward speed at 0.3 Hz, more at 0.6–2.4 Hz — and the template, fed the
-/// measured joints, misses it (Fig. 3.11's side drift).
+/// robot turns and drifts sideways at Δφ = π where the symmetric one walks straight, and the
+/// template, fed the measured joints, misses it (Fig. 3.11's side drift): in our runs (8 cycles,
+/// Δφ = π) the sideways speed of the robot's ends, |v_y| + |ω| L/2, is 2–4 % of the forward speed
+/// at 0.3 Hz for seeds 1–4 and 25 % for seeds 5 and 6, 2.5–43 % at 0.6 Hz, 4–25 % at 1.2 Hz; the
+/// symmetric robot's is under 0.1 % at 0.3–0.6 Hz.
 inline constexpr double kStiffnessSpread = 0.15;  ///< relative (K_k = K ρ(0.15 z), ρ below)
 inline constexpr double kFrictionSpread = 0.15;   ///< relative (μ_k = μ ρ(0.15 z))
 inline constexpr double kMountYawSpread = 0.06;   ///< rad (3.4°)
@@ -98,18 +100,24 @@ struct MultipodPeerSpec {
   int legs = 8;                                     ///< N ∈ {6, 8, 10, 12} (M = N/2 modules)
   robots::MultipodGeometry geometry;                ///< m, as the template's
   MultipodAsymmetry asymmetry = symmetric_legs(8);  ///< (N) per-leg properties
-  double weight = 8.0;         ///< N, Mg: the template's N newtons; valid: > the parts below
-  double gravity = 9.81;       ///< m/s²
-  double timestep = 0.001;     ///< s; valid: (0, 0.002] (the contact's 5 ms needs 2 steps)
-  int iterations = 50;         ///< Newton solver iterations; valid: ≥ 1
-  double tolerance = 1e-10;    ///< solver tolerance; valid: > 0
-  double kp = 200.0;           ///< N·m/rad, every motor's position gain; valid: > 0
+  double weight = 8.0;       ///< N, Mg: the template's N newtons; valid: > the parts below
+  double gravity = 9.81;     ///< m/s²
+  double timestep = 0.001;   ///< s; valid: (0, 0.002] (the contact's 5 ms needs 2 steps)
+  int iterations = 50;       ///< Newton solver iterations; valid: ≥ 1
+  double tolerance = 1e-10;  ///< solver tolerance; valid: > 0
+  /// N·m/rad, every motor's position gain; valid: > 0. Stiff enough that the feet's loads bend a
+  /// roll joint by ~0.001 rad; the armature keeps √(kp/armature) · timestep ≈ 0.45, well inside
+  /// the explicit gain's stability limit of 2.
+  double kp = 200.0;
   double joint_damping = 1.0;  ///< N·m·s/rad, every motor joint; valid: ≥ 0
   double torque_limit = 0.0;   ///< N·m, each motor's most torque (0: unlimited); valid: ≥ 0
-  double armature = 0.001;    ///< kg·m², every motor joint (a geared servo's rotor); valid: ≥ 0
-  double leg_damping = 15.0;  ///< N·s/m, each leg spring; valid: ≥ 0
-  double foot_radius = 0.01;  ///< m; valid: > 0, < foot_depth
-  double foot_mass = 0.01;    ///< kg, each foot (below the spring); valid: > 0
+  double armature = 0.001;  ///< kg·m², every motor joint (a geared servo's rotor); valid: ≥ 0
+  /// N·s/m, each leg spring; valid: ≥ 0. A damping ratio ≈ 0.5 for the body bouncing on its
+  /// stance springs (4 × 15 against 2 √(4 K · Mg/g) ≈ 113): with 5 N·s/m the robot hops at 2.4 Hz
+  /// hard enough to turn over at some Δφ; leaf springs with rubber feet are well damped anyway.
+  double leg_damping = 15.0;
+  double foot_radius = 0.01;        ///< m; valid: > 0, < foot_depth
+  double foot_mass = 0.01;          ///< kg, each foot (below the spring); valid: > 0
   double leg_pair_mass = 0.04;      ///< kg, each module's leg pair (above the springs); valid: > 0
   double connector_mass = 0.02;     ///< kg, each connector; valid: > 0
   double stub_mass = 0.01;          ///< kg, the head and tail stubs; valid: > 0
