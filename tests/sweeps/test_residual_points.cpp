@@ -4,7 +4,7 @@
 // a known B (a trial source put in for the test), the fit recovers B and (A(q) + B) q̇ is the
 // measured velocity; residual_training's draws are seeded, reproducible and never take a
 // validation trial. With MuJoCo, one tiny end-to-end point: least squares never makes the training
-// error worse than the template's.
+// error worse than the template's, and the transfer rows of a point sum to its errors row.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -390,7 +390,7 @@ TEST(ResidualPoints, TrainingNeverDrawsAValidationTrialAndRepeatsItsDraws) {
 // --- MuJoCo, end to end -------------------------------------------------------------------------
 
 #ifdef SLIPWALK_HAVE_MUJOCO
-TEST(ResidualPoints, OnMuJoCoTheFitNeverMakesTheTrainingErrorWorse) {
+TEST(ResidualPoints, OnMuJoCoTheFitNeverMakesTheTrainingErrorWorseAndItsRowsAddUp) {
   points::clear_trial_cache();
   const PointKind& f = test_support::point_kind("residual_errors");
   const PointResult r = run("residual_errors",
@@ -406,12 +406,34 @@ TEST(ResidualPoints, OnMuJoCoTheFitNeverMakesTheTrainingErrorWorse) {
     EXPECT_LE(fit, model * (1.0 + 1e-9)) << c;  // B = 0 is one of the candidates
     EXPECT_TRUE(std::isfinite(num(f, row, std::string("test_rmse_fit_") + c))) << c;
   }
-  // The trial the point used is the one multipod_trial records.
+  // The same point's transfer rows give the test errors and means again, summed here.
+  const PointKind& ft = test_support::point_kind("residual_transfer");
+  const PointResult t = run("residual_transfer",
+                            "test_frequency = 2.4\ncycles = 2\nsettle = 0.2\n"
+                            "train_dphi_pi = \"0.9 1.1\"\n");
+  ASSERT_FALSE(t.failed) << t.message;
+  for (const char* c : {"x", "y", "w"}) {
+    double sq_model = 0.0;
+    double sq_fit = 0.0;
+    double sum_true = 0.0;
+    for (const Cells& snapshot : t.rows) {
+      const double truth = num(ft, snapshot, std::string("v_true_") + c);
+      sq_model += std::pow(num(ft, snapshot, std::string("v_model_") + c) - truth, 2);
+      sq_fit += std::pow(num(ft, snapshot, std::string("v_fit_") + c) - truth, 2);
+      sum_true += truth;
+    }
+    const auto n = static_cast<double>(t.rows.size());
+    EXPECT_NEAR(std::sqrt(sq_model / n), num(f, row, std::string("test_rmse_model_") + c), 1e-12)
+        << c;
+    EXPECT_NEAR(std::sqrt(sq_fit / n), num(f, row, std::string("test_rmse_fit_") + c), 1e-12) << c;
+    EXPECT_NEAR(sum_true / n, num(f, row, std::string("test_mean_true_") + c), 1e-12) << c;
+  }
+  // A trial's rows: a sample every 1/125 s from 0 to cycles / f = 2/2.4 s.
   const PointResult trial = run("multipod_trial",
                                 "frequency = 2.4\ncycles = 2\nsettle = 0.2\n"
                                 "dphi_pi = 0.9\n");
   ASSERT_FALSE(trial.failed) << trial.message;
-  EXPECT_GT(trial.rows.size(), 100U);
+  EXPECT_EQ(trial.rows.size(), static_cast<std::size_t>(std::floor(2.0 / 2.4 * 125.0)) + 1);
 }
 #else
 TEST(ResidualPoints, WithoutMuJoCoThePointsFailAndSayWhy) {
