@@ -98,7 +98,7 @@ def main():
         win = (cyc >= start) & (cyc <= start + SHOWN_CYCLES)
         for j, k in enumerate(rs.COMPONENTS):
             a = axes[i, j]
-            a.plot(cyc[win], r[f"v_true_{k}"][win], color=rs.TRUE, lw=1.6,
+            a.plot(cyc[win], r[f"v_true_{k}"][win], color=rs.TRUE, lw=2.0,
                    label="MuJoCo Multipod ('measured')")
             a.plot(cyc[win], r[f"v_model_{k}"][win], color=rs.MODEL, lw=1.3,
                    label="model A(q)q̇")
