@@ -9,7 +9,8 @@ Rows 0.3, 0.6, 1.2, 2.4 Hz; columns forward velocity, side velocity, yaw rate. T
 Δφ = π; B is fitted (pseudo-inverse, §5.3.1) on the trials Δφ = (0.65, 0.9, 1.1, 1.35)π at the
 same frequency. MuJoCo's Multipod, whose legs differ in stiffness, friction and mounting in ways
 the template does not know, stands in for the thesis' motion capture and is drawn in its red;
-the template A(q)q̇ blue, (A(q) + B)q̇ orange. Two gait cycles are drawn: the second and third
+the template A(q)q̇ blue, (A(q) + B)q̇ orange; in the side-velocity column the means over the
+test trial dashed (the drift). Two gait cycles are drawn: the second and third
 recorded (the first, a transient, is dropped from every fit and error); the RMSEs are over all
 test snapshots (recorded cycles 2-8).
 
@@ -104,6 +105,9 @@ def main():
                    label="model A(q)q̇")
             a.plot(cyc[win], r[f"v_fit_{k}"][win], color=rs.FIT, lw=1.3,
                    label="model + B, (A(q)+B)q̇")
+            if k == "y":  # the drift: means over all test snapshots, dashed
+                for w, color in (("true", rs.TRUE), ("model", rs.MODEL), ("fit", rs.FIT)):
+                    a.axhline(v[f"{tg}_mean_{w}_y"], color=color, lw=1.0, ls="--")
             a.set_title(f"{f:g} Hz, {rs.COMPONENT_NAME[k]}: RMSE "
                         f"{c.fmt(v[f'{tg}_test_rmse_model_{k}'], 2)} → "
                         f"{c.fmt(v[f'{tg}_test_rmse_fit_{k}'], 2)} {rs.COMPONENT_UNIT[k]}")
@@ -127,8 +131,11 @@ def main():
     v["errors_vs_transfer_rel_max"] = max(v[f"{rs.tag(f)}_errors_vs_transfer_rel_{k}"]
                                           for f in freqs for k in rs.COMPONENTS)
 
+    from matplotlib.lines import Line2D
     handles, labels = axes[0, 0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="upper right", ncol=3, fontsize=10, frameon=False,
+    handles.append(Line2D([], [], color=c.NEUTRAL, lw=1.0, ls="--"))
+    labels.append("side velocity: means over the test trial")
+    fig.legend(handles, labels, loc="upper right", ncol=2, fontsize=10, frameon=False,
                bbox_to_anchor=(0.99, 1.0))
     fig.suptitle("Fig. 5.5 analog: test trial Δφ = π, B from Δφ = (0.65, 0.9, 1.1, 1.35)π at "
                  "the same frequency;\nrecorded cycles "

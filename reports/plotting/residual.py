@@ -56,7 +56,16 @@ def dphi_list(text) -> tuple[float, ...]:
 
 
 def load(data, name: str, columns: list[str]) -> c.Table:
-    return c.Table(c.study_file(data, name, STUDY), columns)
+    """DATA/ch5_residual/<name> with its required columns; exit 2 when it has no rows. B is
+    trained at the test's frequency unless a point names train_frequency: an empty cell there
+    reads as the test frequency."""
+    t = c.Table(c.study_file(data, name, STUDY), columns)
+    if t.n == 0:
+        c.fail(f"{t.path}: no data rows")
+    if "train_frequency" in t.columns and "test_frequency" in t.columns:
+        train = t["train_frequency"].astype(float)
+        t.columns["train_frequency"] = np.where(np.isnan(train), t["test_frequency"], train)
+    return t
 
 
 def rows(t: c.Table, **match) -> c.Table:
