@@ -4,10 +4,10 @@
 Input: DATA/ch5_residual/transfer.csv (residual_transfer) and errors.csv (residual_errors),
 studies/ch5_residual. Output: OUT/fig5_6.png, OUT/values/fig5_6.json.
 
-(a-c) Per component (rows) and frequency (columns), the distribution of v − v_true over the test trial's
-snapshots (Δφ = π, recorded cycles 2-8): the template model (blue, whole violin), model + B
-fitted on Δφ = (0.65, 0.9, 1.1, 1.35)π at 0.3 Hz (orange, left half) and at the test trial's
-own frequency (purple, right half), as the thesis draws them. (d) Beyond the thesis: the
+(a-c) Per component (rows) and frequency (columns), the distribution of v − v_true over the
+test trial's snapshots (Δφ = π, recorded cycles 2-8): the template model (blue, whole violin),
+model + B fitted on Δφ = (0.65, 0.9, 1.1, 1.35)π at 0.3 Hz (orange, left half) and at the test
+trial's own frequency (purple, right half), as the thesis draws them. (d) Beyond the thesis: the
 side-velocity test RMSE of the symmetric MuJoCo robot's model (no leg-to-leg differences), of
 the asymmetric robot's model, and with B (pseudo-inverse and ridge, trained at the own
 frequency), from errors.csv.
@@ -104,7 +104,8 @@ def main():
             v[f"{tg}_asym_rmse_model_{k}"] = asym[f"test_rmse_model_{k}"]
             v[f"{tg}_asym_rmse_fit_{k}"] = asym[f"test_rmse_fit_{k}"]
             v[f"{tg}_ridge_rmse_fit_{k}"] = ridge[f"test_rmse_fit_{k}"]
-            v[f"{tg}_ridge_over_pinv_{k}"] = ridge[f"test_rmse_fit_{k}"] / asym[f"test_rmse_fit_{k}"]
+            v[f"{tg}_ridge_over_pinv_{k}"] = (ridge[f"test_rmse_fit_{k}"]
+                                              / asym[f"test_rmse_fit_{k}"])
             extra = asym[f"test_rmse_model_{k}"] - sym[f"test_rmse_model_{k}"]
             removed = asym[f"test_rmse_model_{k}"] - asym[f"test_rmse_fit_{k}"]
             v[f"{tg}_asym_extra_{k}"] = extra
@@ -194,7 +195,8 @@ def main():
     a.legend(loc="upper left", fontsize=9.5, ncol=2)
     a.grid(axis="x", visible=False)
     fig.suptitle("Fig. 5.6 analog: residuals v − v_true of the test trial Δφ = π (recorded "
-                 "cycles 2–8), B from Δφ = (0.65, 0.9, 1.1, 1.35)π;\npanel titles: RMSE of the model | "
+                 "cycles 2–8), B from Δφ = (0.65, 0.9, 1.1, 1.35)π;\n"
+                 "panel titles: RMSE of the model | "
                  f"B@{rs.BASE_FREQUENCY:g} Hz | B@own frequency", x=0.01, ha="left",
                  fontsize=11)
     c.save_figure(fig, args.out, NAME)
