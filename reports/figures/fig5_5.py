@@ -25,6 +25,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import math
+
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
@@ -65,7 +67,7 @@ def main():
             e_fit = rs.rmse(r[f"v_fit_{k}"] - true)
             v[f"{tg}_test_rmse_model_{k}"] = e_model
             v[f"{tg}_test_rmse_fit_{k}"] = e_fit
-            v[f"{tg}_reduction_{k}_pct"] = 100.0 * (1.0 - e_fit / e_model)
+            v[f"{tg}_reduction_{k}_pct"] = 100.0 * (1.0 - rs.ratio(e_fit, e_model))
             for w in ("true", "model", "fit"):
                 v[f"{tg}_mean_{w}_{k}"] = float(np.mean(r[f"v_{w}_{k}"]))
         # how much of the model's side drift B removes: 1 − |mean fit − mean true| / |mean model −
@@ -87,11 +89,11 @@ def main():
         v[f"{tg}_train_snapshots"] = int(e["snapshots"])
         for k in rs.COMPONENTS:
             v[f"{tg}_train_rmse_fit_{k}"] = e[f"train_rmse_fit_{k}"]
-            ratio = v[f"{tg}_test_rmse_fit_{k}"] / e[f"train_rmse_fit_{k}"]
+            ratio = rs.ratio(v[f"{tg}_test_rmse_fit_{k}"], e[f"train_rmse_fit_{k}"])
             v[f"{tg}_test_over_train_{k}"] = ratio
             # the same RMSE from the two files: errors.csv's row and transfer.csv's snapshots
-            v[f"{tg}_errors_vs_transfer_rel_{k}"] = abs(
-                e[f"test_rmse_fit_{k}"] / v[f"{tg}_test_rmse_fit_{k}"] - 1.0)
+            v[f"{tg}_errors_vs_transfer_rel_{k}"] = rs.rel_diff(e[f"test_rmse_fit_{k}"],
+                                                                v[f"{tg}_test_rmse_fit_{k}"])
 
         # the traces: the second and third recorded cycles, against t·f
         cyc = r["t"] * f
@@ -120,7 +122,7 @@ def main():
         v[f"reduction_{k}_min_pct"] = min(v[f"{rs.tag(f)}_reduction_{k}_pct"] for f in freqs)
     v["side_greatly_improved"] = bool(v["reduction_y_min_pct"] >= GREAT)
     ratios = [v[f"{rs.tag(f)}_test_over_train_{k}"] for f in freqs for k in rs.COMPONENTS]
-    v["test_over_train_worst"] = max(max(x, 1.0 / x) for x in ratios)
+    v["test_over_train_worst"] = max(max(x, 1.0 / x) if x > 0 else math.inf for x in ratios)
     v["model_explains_y_max"] = max(v[f"{rs.tag(f)}_model_explains_y"] for f in freqs)
     v["fit_explains_y_min"] = min(v[f"{rs.tag(f)}_fit_explains_y"] for f in freqs)
     v["rank_min"] = min(v[f"{rs.tag(f)}_rank"] for f in freqs)

@@ -92,8 +92,10 @@ def main():
             res[f, "own", k] = own[f"v_fit_{k}"] - own[f"v_true_{k}"]
             for w in ("model", "base", "own"):
                 v[f"{tg}_rmse_{w}_{k}"] = rs.rmse(res[f, w, k])
-            v[f"{tg}_base_over_own_{k}"] = v[f"{tg}_rmse_base_{k}"] / v[f"{tg}_rmse_own_{k}"]
-            v[f"{tg}_base_over_model_{k}"] = v[f"{tg}_rmse_base_{k}"] / v[f"{tg}_rmse_model_{k}"]
+            v[f"{tg}_base_over_own_{k}"] = rs.ratio(v[f"{tg}_rmse_base_{k}"],
+                                                    v[f"{tg}_rmse_own_{k}"])
+            v[f"{tg}_base_over_model_{k}"] = rs.ratio(v[f"{tg}_rmse_base_{k}"],
+                                                      v[f"{tg}_rmse_model_{k}"])
         # the asymmetry: symmetric robot (asymmetry 0) against the asymmetric one, test Δφ = π
         sym = rs.error_point(errors, f, f, asymmetry=0.0)
         asym = rs.error_point(errors, f, f, asymmetry=1.0)
@@ -104,8 +106,8 @@ def main():
             v[f"{tg}_asym_rmse_model_{k}"] = asym[f"test_rmse_model_{k}"]
             v[f"{tg}_asym_rmse_fit_{k}"] = asym[f"test_rmse_fit_{k}"]
             v[f"{tg}_ridge_rmse_fit_{k}"] = ridge[f"test_rmse_fit_{k}"]
-            v[f"{tg}_ridge_over_pinv_{k}"] = (ridge[f"test_rmse_fit_{k}"]
-                                              / asym[f"test_rmse_fit_{k}"])
+            v[f"{tg}_ridge_over_pinv_{k}"] = rs.ratio(ridge[f"test_rmse_fit_{k}"],
+                                                      asym[f"test_rmse_fit_{k}"])
             extra = asym[f"test_rmse_model_{k}"] - sym[f"test_rmse_model_{k}"]
             removed = asym[f"test_rmse_model_{k}"] - asym[f"test_rmse_fit_{k}"]
             v[f"{tg}_asym_extra_{k}"] = extra

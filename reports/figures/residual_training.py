@@ -64,7 +64,7 @@ def main():
             for k, m in zip(ks, med):
                 v[f"{tg}_median_k{k}_{comp}"] = float(m)
             if 4 in ks:
-                v[f"{tg}_k4_over_best_{comp}"] = float(med[list(ks).index(4)] / best)
+                v[f"{tg}_k4_over_best_{comp}"] = rs.ratio(float(med[list(ks).index(4)]), best)
             a = axes[j]
             a.fill_between(ks, lo, hi, color=colors[f], alpha=0.2, lw=0)
             a.plot(ks, med, "o-", color=colors[f], lw=1.6, ms=4, label=f"{f:g} Hz: model + B")

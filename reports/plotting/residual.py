@@ -11,6 +11,8 @@ Velocities: forward v_x and side v_y in m/s (body frame), yaw rate ω in rad/s.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 import common as c
@@ -86,6 +88,19 @@ def frequencies(t: c.Table, column: str) -> list[float]:
     """The thesis' frequencies present in a column, in order."""
     have = t[column].astype(float)
     return [f for f in FREQUENCIES if np.any(np.isclose(have, f))]
+
+
+def ratio(a: float, b: float) -> float:
+    """a / b for two errors (≥ 0): +∞ when only b is 0, 1 when both are (equal errors)."""
+    if b == 0.0:
+        return 1.0 if a == 0.0 else math.inf
+    return a / b
+
+
+def rel_diff(a: float, b: float) -> float:
+    """|a − b| / max(|a|, |b|), 0 when both are 0."""
+    m = max(abs(a), abs(b))
+    return abs(a - b) / m if m > 0 else 0.0
 
 
 def rmse(a: np.ndarray) -> float:
