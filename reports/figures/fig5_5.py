@@ -95,6 +95,23 @@ def main():
             v[f"{tg}_errors_vs_transfer_rel_{k}"] = rs.rel_diff(e[f"test_rmse_fit_{k}"],
                                                                 v[f"{tg}_test_rmse_fit_{k}"])
 
+        # the training trials evaluated as test trials (transfer.csv) pool to the training RMSE
+        # of errors.csv when both kinds drop the same cycle: a check of the two kinds
+        pooled = {k: [] for k in rs.COMPONENTS}
+        for d in rs.TRAIN_DPHI:
+            tr = rs.rows(transfer, train_frequency=f, test_frequency=f, test_dphi_pi=d,
+                         estimator="pinv", asymmetry=1.0)
+            for k in rs.COMPONENTS:
+                pooled[k].append(tr[f"v_fit_{k}"] - tr[f"v_true_{k}"])
+        if all(a.size for a in pooled["x"]):
+            v[f"{tg}_train_pooled_rel"] = max(
+                rs.rel_diff(rs.rmse(np.concatenate(pooled[k])), e[f"train_rmse_fit_{k}"])
+                for k in rs.COMPONENTS)
+        else:
+            v[f"{tg}_train_pooled_rel"] = None
+            v[f"{tg}_train_pooled_rel_reason"] = (f"transfer.csv lacks a training trial at "
+                                                  f"{f:g} Hz as a test trial")
+
         # the traces: the second and third recorded cycles, against t·f
         cyc = r["t"] * f
         start = np.floor(cyc[0] + 1e-9)
@@ -130,6 +147,10 @@ def main():
     drift = [v[f"{rs.tag(f)}_drift_removed_y"] for f in freqs]
     v["drift_removed_y_max"] = max(d for d in drift if d is not None) if any(
         d is not None for d in drift) else None
+    pooled = [v[f"{rs.tag(f)}_train_pooled_rel"] for f in freqs]
+    v["train_pooled_rel_max"] = (max(pooled) if all(p is not None for p in pooled) else None)
+    if v["train_pooled_rel_max"] is None:
+        v["train_pooled_rel_max_reason"] = "some training trials are not in transfer.csv"
     v["errors_vs_transfer_rel_max"] = max(v[f"{rs.tag(f)}_errors_vs_transfer_rel_{k}"]
                                           for f in freqs for k in rs.COMPONENTS)
 
