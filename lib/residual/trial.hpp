@@ -5,7 +5,8 @@
 // model turns the joint angles into feet (robots::multipod_feet_from_joints) and the local
 // connection A(q) q̇ (template.hpp), the pose gives the measured body velocity g̊_true.
 //
-// The trial file (CSV, one header line, then one line per sample; '#' lines are comments):
+// The trial file (CSV, one header line, then one line per sample; '#' starts a comment to the end
+// of its line, blank lines are skipped):
 //
 //   t, x, y, theta, yaw1_1, roll_1, yaw2_1, ..., yaw1_M, roll_M, yaw2_M
 //
@@ -35,6 +36,8 @@ struct MotionTrial {
   Eigen::VectorXd t;       ///< (n) s, strictly increasing
   Eigen::MatrixX3d pose;   ///< (n × 3) x, y (m), θ (rad, continuous), world
   Eigen::MatrixXd joints;  ///< (n × 3M) module i's θ_y1, θ_r, θ_y2 in columns 3i, 3i+1, 3i+2
+  std::string id;          ///< the trial's `id` cell when read from a file with an id column
+  std::string source;      ///< "file:line" of the header that named the columns, when read
 
   [[nodiscard]] Eigen::Index samples() const { return t.size(); }
   [[nodiscard]] int modules() const { return static_cast<int>(joints.cols() / 3); }
@@ -61,13 +64,15 @@ void validate(const MotionTrial& trial);
 /// The same from text; `file` labels the messages.
 [[nodiscard]] std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& file);
 
-/// Writes the trial in the file format (header, then the samples with 17 significant digits, so
-/// reading it back gives the same numbers).
+/// Writes the trial in the file format (header, then the samples with up to 17 significant digits,
+/// core::format_double's shortest that round-trips, so reading it back gives the same numbers).
+/// Throws core::InputError (validate) for an invalid trial; writes no id column.
 void write_trial(std::ostream& out, const MotionTrial& trial);
 
 /// B (3 × 2K) as the residual file a scene's [residual] file reads (scene::parse_residual): three
-/// rows v_x, v_y, ω of 2K numbers with 17 significant digits, after `comment` (each of its lines
-/// written as a '#' line; may be empty).
+/// rows v_x, v_y, ω of 2K numbers with up to 17 significant digits (round-trip exact), after
+/// `comment` (each of its lines written as a '#' line; may be empty). Throws core::InputError("B")
+/// for a non-finite entry.
 [[nodiscard]] std::string residual_file_text(const Eigen::Matrix<double, 3, Eigen::Dynamic>& B,
                                              std::string_view comment);
 

@@ -12,5 +12,6 @@ void add_model_command(CLI::App& app);      ///< model [--friction] [--in]   (mo
 void add_run_command(CLI::App& app);        ///< run SCENE.toml --out FILE   (run_command.cpp)
 void add_kinds_command(CLI::App& app);      ///< kinds [KIND...] [--json]   (kinds_command.cpp)
 void add_plan_command(CLI::App& app);       ///< plan PLAN.toml --out FILE  (plan_command.cpp)
+void add_residual_command(CLI::App& app);   ///< residual fit --trials ...  (residual_command.cpp)
 
 }  // namespace slipwalk::cli

@@ -41,6 +41,10 @@ namespace slipwalk::sweeps::points {
 /// What one step of the brute-force planner costs, §5.5 (planning_cost.cpp).
 [[nodiscard]] std::vector<PointKind> planning_cost_kinds();
 
+/// The residual transfer of §5.3 on MuJoCo's Multipod: trials, the fit of B and its errors, the
+/// training-set size curve (residual.cpp).
+[[nodiscard]] std::vector<PointKind> residual_kinds();
+
 /// The hostile-input campaign against the binary itself (hostile_inputs_kind.cpp).
 [[nodiscard]] std::vector<PointKind> hostile_input_kinds();
 

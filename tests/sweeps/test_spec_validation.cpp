@@ -49,6 +49,16 @@ const std::map<std::string, std::string>& bases() {
       {"plan_summary", "goal = \"twist\"\nsteps = 2\n"},
       {"foot_path", "samples = 5\n"},
       {"planning_cost", "mode = \"kernel\"\noptions = 8\nrepeats = 1\n"},
+      {"multipod_trial", "frequency = 2.4\ncycles = 1\nskip_cycles = 0\nsettle = 0.0\n"},
+      {"residual_transfer",
+       "test_frequency = 2.4\ncycles = 1\nskip_cycles = 0\nsettle = 0.0\ntrain_dphi_pi = "
+       "\"1.0\"\n"},
+      {"residual_errors",
+       "test_frequency = 2.4\ncycles = 1\nskip_cycles = 0\nsettle = 0.0\ntrain_dphi_pi = "
+       "\"1.0\"\n"},
+      {"residual_training",
+       "frequency = 2.4\ncycles = 1\nskip_cycles = 0\nsettle = 0.0\ntrain_trials = 1\ndraws = "
+       "1\nvalidate_dphi_pi = \"1.8\"\n"},
   };
   return all;
 }
