@@ -135,6 +135,11 @@ def main():
             v[key] = None
             v[key + "_reason"] = f"no test frequency above {rs.BASE_FREQUENCY:g} Hz in the data"
     explained = [v[f"{rs.tag(f)}_asym_explained_y"] for f in freqs]
+    # the ledger's reading: at every frequency the differences add side-velocity error to the
+    # model and B takes back at least EXPLAINS of it (false where they add none)
+    v["asym_explained_y_holds"] = all(e is not None and e >= EXPLAINS for e in explained)
+    v["asym_adds_error_y_frequencies"] = [f for f in freqs
+                                          if v[f"{rs.tag(f)}_asym_extra_y"] > 0]
     v["asym_explained_y_min"] = min(explained) if all(x is not None for x in explained) else None
     if v["asym_explained_y_min"] is None:
         v["asym_explained_y_min_reason"] = ("at some frequency the asymmetry adds no side-velocity "

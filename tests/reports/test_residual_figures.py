@@ -75,8 +75,9 @@ def errors_rows() -> list[list]:
 
 
 # Medians of the validation RMSE against k: the least is 1.99 (k = 5); within 5 % (≤ 2.0895)
-# first at k = 3 for every component at 0.3 Hz; at 1.2 Hz first at k = 6, except the yaw rate,
-# whose curve is held at 2.2 from k = 5 on (first within 5 % at k = 5).
+# first at k = 3 for every component at 0.3 Hz. At 1.2 Hz the curve still decreases at the
+# largest k run (6), so its stop lies beyond the range, written 7; the yaw rate's curve is held
+# at 2.2 from k = 5 on (first within 5 % at k = 5).
 CURVE = {0.3: [10.0, 5.0, 2.08, 2.2, 1.99, 2.0], 1.2: [10.0, 5.0, 3.0, 2.5, 2.2, 2.0]}
 
 
@@ -157,14 +158,19 @@ class ResidualFigures(unittest.TestCase):
         share = (ASYM_MODEL - ASYM_FIT) / (ASYM_MODEL - SYM_MODEL)
         self.assertAlmostEqual(v["asym_explained_y_min"], share, places=12)
         self.assertAlmostEqual(v["ridge_over_pinv_y_max"], 1.1, places=12)
+        self.assertTrue(v["asym_explained_y_holds"])
 
     def test_the_stopping_point_is_the_least_k_within_five_percent_of_the_best_median(self):
         v = self.values["residual_training"]
         self.assertEqual(v["f0p3_k_stop_x"], 3)
         self.assertEqual(v["f0p3_k_stop_all"], 3)
-        self.assertEqual(v["f1p2_k_stop_y"], 6)
         self.assertEqual(v["f1p2_k_stop_w"], 5)
-        self.assertEqual(v["k_stop_all_max"], 6)
+
+    def test_a_curve_still_decreasing_at_the_largest_k_stops_beyond_the_range(self):
+        v = self.values["residual_training"]
+        self.assertEqual(v["f1p2_k_max"], 6)
+        self.assertEqual(v["f1p2_k_stop_y"], 7)
+        self.assertEqual(v["k_stop_all_max"], 7)
 
 
 if __name__ == "__main__":
