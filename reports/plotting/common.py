@@ -287,7 +287,10 @@ SUPPORT = "tab:purple"    # the spring support: roll, pitch, F_z (eq. 3.6, Alg. 
 ESTIMATE = "tab:blue"     # Fig. 3.11: the model's estimate of a Multipod
 FILTERED = "tab:blue"     # Fig. 3.12: the estimate through the IIR filter (§3.5.2.2)
 MUJOCO = "tab:green"      # MuJoCo, the peer simulator, also where it stands in for the robot
-MEASURED = "tab:red"      # the thesis' measurements: we have none, so no data of ours is drawn red
+# The thesis' measurements: we have none, so no data of ours is drawn red, except where a peer
+# stands in for the measured robot of a thesis figure (§5.3: MuJoCo's Multipod is the motion
+# capture B is fitted to, Figs. 5.5, 5.6).
+MEASURED = "tab:red"
 REFERENCE = "0.15"        # a law, closed form, target or bound drawn for reference
 NEUTRAL = "0.45"          # a difference of two of our runs, a spread, a secondary curve
 # Series without a thesis meaning (legs, feet, distributions, robot sizes, components): none of
