@@ -335,7 +335,8 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
 }
 
 std::vector<MotionTrial> read_trials(const std::filesystem::path& file) {
-  return parse_trials(core::read_input_file(file, "a motion-trial CSV file"), file.string());
+  return parse_trials(core::read_input_file(file, "a motion-trial CSV file", kMaxTrialFileBytes),
+                      file.string());
 }
 
 void write_trial(std::ostream& out, const MotionTrial& trial) {

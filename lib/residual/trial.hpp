@@ -25,6 +25,7 @@
 // column holds several trials, one per id (rows of one id together, in time order), which is how a
 // sweep's CSV of trials (kind multipod_trial) reads as trial files.
 #include <Eigen/Core>
+#include <cstddef>
 #include <filesystem>
 #include <ostream>
 #include <string>
@@ -62,6 +63,10 @@ void validate(const MotionTrial& trial);
 
 /// The trial file's column names for M modules, in the order write_trial writes them.
 [[nodiscard]] std::vector<std::string> trial_columns(int modules);
+
+/// The largest trial file read: a study's whole set of trials (144 trials of 8 cycles at 125 Hz,
+/// ch5_residual's trials.csv, is ~75 MB) fits with room to spare.
+inline constexpr std::size_t kMaxTrialFileBytes = std::size_t{512} << 20;
 
 /// Reads a trial file (format above): one trial, or one per id. Throws core::InputError with
 /// file:line (file:line:col for a bad number) for a missing or duplicated column, a joint column
