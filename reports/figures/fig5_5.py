@@ -95,6 +95,17 @@ def main():
             v[f"{tg}_errors_vs_transfer_rel_{k}"] = rs.rel_diff(e[f"test_rmse_fit_{k}"],
                                                                 v[f"{tg}_test_rmse_fit_{k}"])
 
+        # the floor any constant B reaches on the test gait: B fitted on that trial itself
+        # (errors.csv's in-sample block); a reduction below GREAT there means no B, however
+        # trained, greatly improves this gait
+        ins = rs.rows(errors, train_frequency=f, train_dphi_pi=(rs.TEST_DPHI,), test_frequency=f,
+                      test_dphi_pi=rs.TEST_DPHI, estimator="pinv", asymmetry=1.0)
+        for k in rs.COMPONENTS:
+            v[f"{tg}_insample_reduction_{k}_pct"] = (
+                100.0 * (1.0 - rs.ratio(float(ins[f"test_rmse_fit_{k}"][0]),
+                                        float(ins[f"test_rmse_model_{k}"][0])))
+                if ins.n else None)
+
         # the training trials evaluated as test trials (transfer.csv) pool to the training RMSE
         # of errors.csv when both kinds drop the same cycle: a check of the two kinds
         pooled = {k: [] for k in rs.COMPONENTS}
@@ -138,6 +149,14 @@ def main():
     for k in rs.COMPONENTS:
         v[f"reduction_{k}_min_pct"] = min(v[f"{rs.tag(f)}_reduction_{k}_pct"] for f in freqs)
     v["side_greatly_improved"] = bool(v["reduction_y_min_pct"] >= GREAT)
+    insample = {f: v[f"{rs.tag(f)}_insample_reduction_y_pct"] for f in freqs}
+    if all(x is not None for x in insample.values()):
+        v["insample_reduction_y_min_pct"] = min(insample.values())
+        v["insample_below_great_frequencies"] = ", ".join(
+            f"{f:g}" for f, x in insample.items() if x < GREAT) or "none"
+    else:
+        v["insample_reduction_y_min_pct"] = None
+        v["insample_below_great_frequencies"] = None
     ratios = [v[f"{rs.tag(f)}_test_over_train_{k}"] for f in freqs for k in rs.COMPONENTS]
     v["test_over_train_worst"] = max(max(x, 1.0 / x) if x > 0 else math.inf for x in ratios)
     v["model_explains_y_max"] = max(v[f"{rs.tag(f)}_model_explains_y"] for f in freqs)
