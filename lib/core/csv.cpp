@@ -12,6 +12,16 @@
 
 namespace slipwalk::core {
 
+std::string_view trim_blanks(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) {
+    s.remove_prefix(1);
+  }
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) {
+    s.remove_suffix(1);
+  }
+  return s;
+}
+
 std::string format_double(double value) {
   if (std::isnan(value)) {
     return "nan";

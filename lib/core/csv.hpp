@@ -35,6 +35,9 @@ class LineReader {
 void split_cells(std::string_view line, std::vector<std::string_view>& cells,
                  std::vector<int>& starts);
 
+/// The cell without the spaces and tabs around it (a view into `s`).
+[[nodiscard]] std::string_view trim_blanks(std::string_view s);
+
 class CsvWriter {
  public:
   CsvWriter(std::ostream& out, const std::vector<std::string>& columns);

@@ -266,16 +266,6 @@ void read_start(const TableReader& start, PlanFile& file) {
   }
 }
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) {
-    s.remove_prefix(1);
-  }
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) {
-    s.remove_suffix(1);
-  }
-  return s;
-}
-
 }  // namespace
 
 void parse_waypoints(std::string_view text, const std::string& file, Goal& goal) {
@@ -292,7 +282,7 @@ void parse_waypoints(std::string_view text, const std::string& file, Goal& goal)
   core::LineReader lines(text);
   for (std::string_view line; lines.next(line);) {
     const std::string_view content = line.substr(0, line.find('#'));
-    if (trim(content).empty()) {
+    if (core::trim_blanks(content).empty()) {
       continue;
     }
     const std::string where = file + ":" + std::to_string(lines.line_number());
@@ -303,7 +293,7 @@ void parse_waypoints(std::string_view text, const std::string& file, Goal& goal)
     }
     bool header = first;
     for (std::size_t c = 0; c < 4 && header; ++c) {
-      header = trim(cells[c]) == kHeader[c];
+      header = core::trim_blanks(cells[c]) == kHeader[c];
     }
     first = false;
     if (header) {
@@ -311,7 +301,7 @@ void parse_waypoints(std::string_view text, const std::string& file, Goal& goal)
     }
     std::array<double, 4> v{};
     for (std::size_t c = 0; c < 4; ++c) {
-      const std::string_view cell = trim(cells[c]);
+      const std::string_view cell = core::trim_blanks(cells[c]);
       const std::string at =
           where + ":" + std::to_string(starts[c] + static_cast<int>(cell.data() - cells[c].data()));
       const auto [ptr, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v[c]);

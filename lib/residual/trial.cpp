@@ -30,16 +30,6 @@ constexpr std::array<std::string_view, 3> kJointPrefix = {"yaw1_", "roll_", "yaw
 /// The pose columns, in the file's order.
 constexpr std::array<std::string_view, 4> kPoseColumn = {"t", "x", "y", "theta"};
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) {
-    s.remove_prefix(1);
-  }
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) {
-    s.remove_suffix(1);
-  }
-  return s;
-}
-
 std::string label_of(const MotionTrial& trial) {
   return trial.label.empty() ? std::string("the trial") : trial.label;
 }
@@ -84,7 +74,7 @@ Layout read_header(std::string_view content, const std::string& where,
            std::to_string(starts[c] + static_cast<int>(name.data() - cells[c].data()));
   };
   for (std::size_t c = 0; c < cells.size(); ++c) {
-    const std::string_view name = trim(cells[c]);
+    const std::string_view name = core::trim_blanks(cells[c]);
     int* slot = nullptr;
     for (std::size_t p = 0; p < kPoseColumn.size(); ++p) {
       if (name == kPoseColumn[p]) {
@@ -247,7 +237,7 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
   core::LineReader lines(text);
   for (std::string_view line; lines.next(line);) {
     const std::string_view content = line.substr(0, line.find('#'));
-    if (trim(content).empty()) {
+    if (core::trim_blanks(content).empty()) {
       continue;
     }
     const std::string where = file + ":" + std::to_string(lines.line_number());
@@ -267,7 +257,7 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
              std::to_string(starts[i] + static_cast<int>(cell.data() - cells[i].data()));
     };
     const auto number = [&](int c, std::string_view name) {
-      const std::string_view cell = trim(cells[static_cast<std::size_t>(c)]);
+      const std::string_view cell = core::trim_blanks(cells[static_cast<std::size_t>(c)]);
       double x = 0.0;
       const auto [ptr, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), x);
       if (cell.empty() || ec != std::errc() || ptr != cell.data() + cell.size() ||
@@ -278,7 +268,7 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
       return x;
     };
     if (layout->id >= 0) {
-      const std::string_view id = trim(cells[static_cast<std::size_t>(layout->id)]);
+      const std::string_view id = core::trim_blanks(cells[static_cast<std::size_t>(layout->id)]);
       if (id.empty()) {
         throw InputError(at(layout->id, id), "id: empty");
       }
@@ -300,7 +290,8 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
     open = true;
     const double t = number(layout->pose[0], "t");
     if (!pending.t.empty() && !(t > pending.t.back())) {
-      const std::string_view cell = trim(cells[static_cast<std::size_t>(layout->pose[0])]);
+      const std::string_view cell =
+          core::trim_blanks(cells[static_cast<std::size_t>(layout->pose[0])]);
       throw InputError(at(layout->pose[0], cell),
                        "t must increase strictly within a trial; the row before has t = " +
                            core::format_double(pending.t.back()));
@@ -309,7 +300,8 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
     pending.rows.push_back(where);
     for (std::size_t p = 1; p < kPoseColumn.size(); ++p) {
       const double v = number(layout->pose[p], kPoseColumn[p]);
-      const std::string_view cell = trim(cells[static_cast<std::size_t>(layout->pose[p])]);
+      const std::string_view cell =
+          core::trim_blanks(cells[static_cast<std::size_t>(layout->pose[p])]);
       core::require_in(at(layout->pose[p], cell), v,
                        p == 3 ? contact::limits::kYaw : contact::limits::kPosition);
       pending.pose.push_back(v);
@@ -317,7 +309,8 @@ std::vector<MotionTrial> parse_trials(std::string_view text, const std::string& 
     for (std::size_t k = 0; k < layout->joints.size(); ++k) {
       const std::string name = std::string(kJointPrefix[k % 3]) + std::to_string(k / 3 + 1);
       const double v = number(layout->joints[k], name);
-      const std::string_view cell = trim(cells[static_cast<std::size_t>(layout->joints[k])]);
+      const std::string_view cell =
+          core::trim_blanks(cells[static_cast<std::size_t>(layout->joints[k])]);
       core::require_in(at(layout->joints[k], cell), v, contact::limits::kYaw);
       pending.joints.push_back(v);
     }

@@ -18,6 +18,7 @@
 #include "peers/mujoco/bigant_spec.hpp"
 #include "robots/robots.hpp"
 #include "support/point_rows.hpp"
+#include "support/skip_without_mujoco.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/spec.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
@@ -28,13 +29,6 @@
 
 namespace slipwalk::peers::mujoco {
 namespace {
-
-#ifdef SLIPWALK_HAVE_MUJOCO
-#define SKIP_WITHOUT_MUJOCO()
-#else
-#define SKIP_WITHOUT_MUJOCO() \
-  GTEST_SKIP() << "built without MuJoCo (SLIPWALK_MUJOCO=OFF or libmujoco-dev missing)"
-#endif
 
 /// rad: the most the mirror-symmetric tripod may turn over one gait cycle in MuJoCo.
 constexpr double kTurnBound = 0.003;

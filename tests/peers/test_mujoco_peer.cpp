@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "peers/mujoco/legged_spec.hpp"
 #include "support/point_rows.hpp"
+#include "support/skip_without_mujoco.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/random.hpp"
 #include "sweeps/engine/spec.hpp"
@@ -29,13 +30,6 @@
 
 namespace slipwalk::peers::mujoco {
 namespace {
-
-#ifdef SLIPWALK_HAVE_MUJOCO
-#define SKIP_WITHOUT_MUJOCO()
-#else
-#define SKIP_WITHOUT_MUJOCO() \
-  GTEST_SKIP() << "built without MuJoCo (SLIPWALK_MUJOCO=OFF or libmujoco-dev missing)"
-#endif
 
 constexpr double kMg = 8.18 * 9.81;
 

@@ -20,6 +20,7 @@
 #include "peers/mujoco/multipod_spec.hpp"
 #include "robots/multipod.hpp"
 #include "robots/robots.hpp"
+#include "support/skip_without_mujoco.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
 #include <mujoco/mujoco.h>
 
@@ -28,13 +29,6 @@
 
 namespace slipwalk::peers::mujoco {
 namespace {
-
-#ifdef SLIPWALK_HAVE_MUJOCO
-#define SKIP_WITHOUT_MUJOCO()
-#else
-#define SKIP_WITHOUT_MUJOCO() \
-  GTEST_SKIP() << "built without MuJoCo (SLIPWALK_MUJOCO=OFF or libmujoco-dev missing)"
-#endif
 
 /// The message of the InputError `f` throws ("" if it throws none).
 template <class F>

@@ -15,6 +15,7 @@
 #include "planning/planner.hpp"
 #include "planning/replay_feet.hpp"
 #include "support/point_rows.hpp"
+#include "support/skip_without_mujoco.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #ifdef SLIPWALK_HAVE_MUJOCO
 #include "peers/mujoco/plan_replay.hpp"
@@ -22,13 +23,6 @@
 
 namespace slipwalk::peers::mujoco {
 namespace {
-
-#ifdef SLIPWALK_HAVE_MUJOCO
-#define SKIP_WITHOUT_MUJOCO()
-#else
-#define SKIP_WITHOUT_MUJOCO() \
-  GTEST_SKIP() << "built without MuJoCo (SLIPWALK_MUJOCO=OFF or libmujoco-dev missing)"
-#endif
 
 #ifdef SLIPWALK_HAVE_MUJOCO
 planning::PlanTrack short_plan(const Eigen::Vector3d& twist, long long steps) {
