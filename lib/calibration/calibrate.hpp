@@ -1,0 +1,41 @@
+#pragma once
+// The whole calibration of thesis ch. 4 in order: §4.3.1 on the hanging records, then §4.3.2 on
+// the standing poses (one model, or Table 4.2's selection by the smallest BIC), and the calibrated
+// ground contact wrench of eq. 4.3 for new readings.
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "calibration/hanging.hpp"
+#include "calibration/model.hpp"
+#include "calibration/standing.hpp"
+
+namespace slipwalk::calibration {
+
+struct CalibrationOptions {
+  HangingOptions hanging;
+  MountingOptions mounting;   ///< mounting.model is used when select_model is false
+  bool select_model = true;   ///< Table 4.2: fit all four models, keep the smallest BIC
+  int folds = 5;              ///< cross-validation folds of the selection (2..P)
+  std::uint64_t seed = 1;     ///< the folds' shuffle
+};
+
+struct Calibration {
+  Geometry geometry;
+  HangingCalibration hanging;
+  MountingEstimate mounting;        ///< the selected (or requested) model
+  std::vector<ModelScore> models;   ///< Table 4.2 (empty without selection)
+  double seconds_hanging = 0.0;     ///< wall time of §4.3.1
+  double seconds_standing = 0.0;    ///< of §4.3.2 and the selection
+};
+
+/// Validates everything (InputError naming the place), then calibrates.
+[[nodiscard]] Calibration calibrate(const Geometry& geometry, const std::vector<HangingRecord>& hanging,
+                                    const StandingPoses& poses, const CalibrationOptions& options = {});
+
+/// Eq. 4.3 with the calibration: leg k's ground contact wrench about C in W, from its reading at
+/// shaft angle φ with the body's attitude R^W_C: [R^W_C]·(transform(ŵ) − leg gravity wrench).
+[[nodiscard]] Wrench ground_contact_wrench(const Calibration& calibration, int leg, double phi,
+                                           const Wrench& reading, const Eigen::Matrix3d& attitude);
+
+}  // namespace slipwalk::calibration

@@ -1,0 +1,140 @@
+#pragma once
+// §4.3.2 and §4.4.2: the mounting errors (R̃_k, u_k; model.hpp) from the robot standing still in P
+// poses, and the choice between Table 4.2's four models.
+//
+// The balance (eq. 4.8, derived). At rest, the chassis (legs excluded) is held by the K wrenches
+// the legs apply through the transducers and its own weight G_ch = G_robot − Σ m_k g at its centre
+// of mass C. With ŵ_pk = w_m,pk − w_o,k (the hanging stage's offsets), R_k = R_N,k R̃_k and
+// c_k = p_N,k + u_k, pose p's residual in C is
+//   e_p = Σ_k [R_k f̂_pk ; R_k τ̂_pk + c_k × R_k f̂_pk] + [G_ch ĝ_p ; 0],   ĝ_p = R^W_C,pᵀ (0, 0, −1),
+// and the fit minimises Σ_p ‖e_p‖²_K with K = diag(1, 1, 1, κ, κ, κ) (the thesis: κ = 10). The
+// rotation to W (the thesis writes e_p in W) leaves this K-norm unchanged. The thesis' printed form
+// subtracts each leg's gravity wrench, centre of mass included, and asks for [0, 0, G_robot] with
+// zero torque about C: that is the balance above minus Σ_k x_pk × m_k g ĝ_p in the torque
+// (x_pk = c_k + R_k r_k(φ_pk), the leg's centre of mass in C) — the legs' gravity moment about
+// the chassis' centre of mass, which is not zero and changes from pose to pose when the legs are
+// heavy (6.2 N of 80 N each on BigANT). `thesis_literal` fits that form, to measure what it costs.
+//
+// The models (Table 4.2; DOF for K transducers):
+//   full                  R̃_k and u_k free                   6K   (36)
+//   shared_translation    R̃_k free, u_k = u for all k         3K+3 (21)   (no per-transducer p̃_k)
+//   translations_only     R̃_k = I, u_k free                   3K   (18)
+//   com_only              R̃_k = I, u_k = u                    3    (3)
+// A rotation is parametrised by Cayley parameters (wrench.hpp) in the alternating solver (the
+// thesis': with the rotations fixed the residual is linear in the translations, and with the
+// translations fixed each sweep solves the rotations; repeat until the largest parameter change is
+// below `tolerance`) and by Ceres' quaternion manifold on SO(3) in the joint solver.
+//
+// Standard errors. The residuals' force and torque components have their own scatter (the K-norm
+// mixes units), so the covariance is the sandwich (JᵀKJ)⁻¹ JᵀK Σ K J (JᵀKJ)⁻¹ with Σ the per-block
+// (force, torque) residual variance, at the solution; the rotations' errors are of the rotation
+// vector of R̃_k (radians).
+//
+// Gauge. A common turn of every transducer about the vertical through C, with the displacements
+// turned along, changes e_p only through the tilts of ĝ_p: on level ground the full model is
+// nearly free along it. Its conditioning is reported (the smallest singular value of K^{1/2} J).
+#include <Eigen/Core>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "calibration/hanging.hpp"
+#include "calibration/model.hpp"
+
+namespace slipwalk::calibration {
+
+enum class MountingModel { full, shared_translation, translations_only, com_only };
+inline constexpr MountingModel kMountingModels[] = {MountingModel::full, MountingModel::shared_translation,
+                                                    MountingModel::translations_only, MountingModel::com_only};
+[[nodiscard]] std::string_view model_label(MountingModel model);  ///< "full", "shared_translation", ...
+[[nodiscard]] int model_dof(MountingModel model, int legs);
+
+enum class BalanceTarget { chassis, thesis_literal };
+enum class MountingSolver { alternating, ceres_so3 };
+[[nodiscard]] std::string_view solver_label(MountingSolver solver);  ///< "alternating", "ceres_so3"
+
+struct MountingOptions {
+  MountingModel model = MountingModel::full;
+  MountingSolver solver = MountingSolver::alternating;
+  BalanceTarget target = BalanceTarget::chassis;
+  double torque_weight = 10.0;  ///< κ
+  double tolerance = 1e-10;     ///< alternating: largest parameter change; Ceres: relative cost change
+  int max_iterations = 1000;    ///< alternating sweeps, or Ceres iterations
+};
+
+/// Throws core::InputError("mounting.<field>", ...) for κ not positive and finite, a tolerance
+/// outside (0, 1) or fewer than one iteration.
+void validate(const MountingOptions& options);
+
+/// A starting point (identity rotations and zero displacements by default).
+struct MountingStart {
+  std::vector<Eigen::Matrix3d> rotation;     ///< (K)
+  std::vector<Eigen::Vector3d> displacement; ///< (K); a shared model starts from their mean
+};
+
+struct MountingEstimate {
+  MountingModel model = MountingModel::full;
+  MountingSolver solver = MountingSolver::alternating;
+  BalanceTarget target = BalanceTarget::chassis;
+  std::vector<Eigen::Matrix3d> rotation;       ///< (K) R̃_k (identity where the model fixes it)
+  std::vector<Eigen::Vector3d> displacement;   ///< (K) u_k, m (all equal in a shared model)
+  std::vector<Eigen::Vector3d> rotation_se;    ///< (K) rad, of the rotation vector; 0 where fixed
+  std::vector<Eigen::Vector3d> displacement_se;///< (K) m
+  double chassis_weight = 0.0;  ///< G_ch used, N
+  double rss = 0.0;             ///< Σ_p ‖e_p‖²_K at the solution
+  Eigen::Index poses = 0;
+  int dof = 0;
+  int iterations = 0;           ///< alternating sweeps or Ceres iterations
+  bool converged = false;
+  double seconds = 0.0;         ///< wall time of the solve
+  double smallest_singular_value = 0.0;  ///< of K^{1/2} J at the solution (the gauge's conditioning)
+};
+
+/// Fits the chosen model to `poses` (all of them) given the hanging stage's offsets, weights and
+/// CoM fits. Throws core::InputError naming the pose's row for non-finite entries, attitudes that
+/// are not rotations, wrong widths or fewer poses than the model's DOF / 6 + 1; ComputationError
+/// when the solver fails outright (a non-finite cost).
+[[nodiscard]] MountingEstimate fit_mounting(const Geometry& geometry, const StandingPoses& poses,
+                                            const HangingCalibration& hanging,
+                                            const MountingOptions& options = {},
+                                            const MountingStart& start = {});
+
+/// e_p for every pose (P × 6), in W (force N, torque N·m about C, unweighted), under `estimate`.
+[[nodiscard]] Eigen::MatrixXd balance_residuals(const Geometry& geometry, const StandingPoses& poses,
+                                                const HangingCalibration& hanging,
+                                                const MountingEstimate& estimate);
+
+/// The naive tare of §4.1.2.1 (Fig. 4.2, Fig. 4.6 blue): each transducer's bias is its mean reading
+/// over the first `cycles` turns of its leg in `air` (the upright robot, feet in the air); the
+/// readings less the bias, through the nominal frames, summed about B's origin, rotated to W, less
+/// [0, 0, G_robot, 0, 0, 0]: (P × 6).
+[[nodiscard]] Eigen::MatrixXd naive_residuals(const Geometry& geometry, const StandingPoses& poses,
+                                              const HangingRecord& air, double cycles = 2.0);
+
+/// One row of Table 4.2.
+struct ModelScore {
+  MountingModel model = MountingModel::full;
+  int dof = 0;
+  double rss = 0.0;     ///< on all poses
+  double cv_mse = 0.0;  ///< mean over the folds of the test poses' mean ‖e_p‖²_K
+  double bic = 0.0;     ///< P ln(RSS/P) + DOF ln P
+};
+
+/// Table 4.2: every model fitted to all poses (RSS, BIC) and by `folds`-fold cross-validation over
+/// a seeded shuffle of the poses (the same folds for every model). `options.model` is ignored.
+[[nodiscard]] std::vector<ModelScore> score_models(const Geometry& geometry, const StandingPoses& poses,
+                                                   const HangingCalibration& hanging,
+                                                   const MountingOptions& options, int folds = 5,
+                                                   std::uint64_t seed = 1);
+
+/// §4.4.2's multistart: `starts` fits from random starts (each rotation by a uniform angle below
+/// `max_angle` about each axis, each displacement uniform in a ball of radius `max_displacement`;
+/// the thesis: 15° and a third of the robot's 73 cm), seeded; the first start is the default one.
+[[nodiscard]] std::vector<MountingEstimate> multistart(const Geometry& geometry, const StandingPoses& poses,
+                                                       const HangingCalibration& hanging,
+                                                       const MountingOptions& options, int starts = 20,
+                                                       std::uint64_t seed = 1,
+                                                       double max_angle = 0.2617993877991494,
+                                                       double max_displacement = 0.73 / 3.0);
+
+}  // namespace slipwalk::calibration
