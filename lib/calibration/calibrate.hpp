@@ -14,24 +14,26 @@ namespace slipwalk::calibration {
 
 struct CalibrationOptions {
   HangingOptions hanging;
-  MountingOptions mounting;   ///< mounting.model is used when select_model is false
-  bool select_model = true;   ///< Table 4.2: fit all four models, keep the smallest BIC
-  int folds = 5;              ///< cross-validation folds of the selection (2..P)
-  std::uint64_t seed = 1;     ///< the folds' shuffle
+  MountingOptions mounting;  ///< mounting.model is used when select_model is false
+  bool select_model = true;  ///< Table 4.2: fit all four models, keep the smallest BIC
+  int folds = 5;             ///< cross-validation folds of the selection (2..P)
+  std::uint64_t seed = 1;    ///< the folds' shuffle
 };
 
 struct Calibration {
   Geometry geometry;
   HangingCalibration hanging;
-  MountingEstimate mounting;        ///< the selected (or requested) model
-  std::vector<ModelScore> models;   ///< Table 4.2 (empty without selection)
-  double seconds_hanging = 0.0;     ///< wall time of §4.3.1
-  double seconds_standing = 0.0;    ///< of §4.3.2 and the selection
+  MountingEstimate mounting;       ///< the selected (or requested) model
+  std::vector<ModelScore> models;  ///< Table 4.2 (empty without selection)
+  double seconds_hanging = 0.0;    ///< CPU time of §4.3.1, s
+  double seconds_standing = 0.0;   ///< of §4.3.2 and the selection, s
 };
 
 /// Validates everything (InputError naming the place), then calibrates.
-[[nodiscard]] Calibration calibrate(const Geometry& geometry, const std::vector<HangingRecord>& hanging,
-                                    const StandingPoses& poses, const CalibrationOptions& options = {});
+[[nodiscard]] Calibration calibrate(const Geometry& geometry,
+                                    const std::vector<HangingRecord>& hanging,
+                                    const StandingPoses& poses,
+                                    const CalibrationOptions& options = {});
 
 /// Eq. 4.3 with the calibration: leg k's ground contact wrench about C in W, from its reading at
 /// shaft angle φ with the body's attitude R^W_C: [R^W_C]·(transform(ŵ) − leg gravity wrench).
