@@ -126,10 +126,13 @@ struct SyntheticStanding {
 };
 
 /// The standing poses: `poses` of the 729 combinations of φ_k ∈ {0, ±0.1 turn}, drawn without
-/// replacement; each on a floor tilted by a small random rotation, under a random heading, every
-/// foot loaded (normal loads from the spring support of contact/, §3.3) plus a random
-/// self-equilibrated set of foot forces, so that the whole robot is exactly at rest; readings with
-/// noise, the attitude as motion capture measures it (with noise).
+/// replacement (P poses are the first P of the same shuffle); each on a floor tilted by a small
+/// random rotation, under a random heading, every foot loaded (each foot pushing against gravity,
+/// the least-squares load distribution of equal vertical springs, synthetic.cpp) plus a random
+/// self-equilibrated set of foot forces, so that the whole robot is exactly at rest with every
+/// normal load positive and every foot inside the friction cone (μ = kFrictionCoefficient);
+/// readings with noise, the attitude as motion capture measures it (with noise). Throws
+/// core::ComputationError when a floor is too steep for the cone (tilt > atan 0.9).
 [[nodiscard]] StandingPoses synthetic_poses(const SyntheticTruth& truth,
                                             const SynthOptions& options);
 /// The same poses with their true attitudes and foot forces (synthetic_poses returns .poses).
