@@ -109,7 +109,8 @@ def hanging_rows(samples: int) -> list[list]:
 def pose_rows(poses: int) -> list[list]:
     draw = np.random.default_rng(13)
     spread = {"naive": [4, 3, 5, 0.8, 1.0, 0.3], "no_mounting": [1.5, 1.2, 0.8, 0.3, 0.4, 0.1],
-              "full": [0.3, 0.3, 0.4, 0.02, 0.02, 0.01], "literal": [0.3, 0.3, 0.4, 0.02, 0.02, 0.01]}
+              "full": [0.3, 0.3, 0.4, 0.02, 0.02, 0.01],
+              "literal": [0.3, 0.3, 0.4, 0.02, 0.02, 0.01]}
     bias = {"naive": [6, -4, 8, 1.5, -2.0, 0.2], "no_mounting": [0.5, 0.3, 0, 0.1, 0.1, 0],
             "full": [0] * 6, "literal": [0, 0, 0, 0.4, -0.3, 0]}
     rows = []

@@ -48,6 +48,16 @@ def tag(x: float) -> str:
     return f"{x:g}".replace(".", "p")
 
 
+def log_axes(ax, noisy: list[float]) -> None:
+    """Log axes, or a note where no noisy point exists to draw (noise scale 0 only)."""
+    if noisy:
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+    else:
+        ax.text(0.5, 0.5, "no point with noise > 0", ha="center", va="center",
+                transform=ax.transAxes)
+
+
 def pose_ticks(ax) -> None:
     """The pose counts of the study as the ticks of a log x axis."""
     from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter, NullLocator
@@ -159,27 +169,27 @@ def main():
             r = cal.rows(acc, noise_scale=s)
             a.plot(r["poses"], r[m], ".", color=colors[s], alpha=0.5, ms=4)
             a.plot(poses_all, med[s, m], "-o", color=colors[s], ms=4, label=f"noise × {s:g}")
-        a.set_xscale("log")
-        a.set_yscale("log")
+        log_axes(a, noisy)
         a.set_xlabel("standing poses P")
         a.set_ylabel(METRIC_LABEL[m])
         pose_ticks(a)
     axes[0][0].set_title("(a) mounting rotation R̃_k")
     axes[0][1].set_title("(b) displacement u_k")
-    axes[0][0].legend(fontsize=9.5)
+    if noisy:
+        axes[0][0].legend(fontsize=9.5)
     a = axes[0][2]
     for m, label, mk in (("weight_err_max", "weight m g [N]", "o"),
                          ("offset_force_err_max", "force offsets [N]", "s")):
         ys = [float(np.median(cal.rows(acc, noise_scale=s)[m])) for s in noisy]
         a.plot(noisy, ys, "-" + mk, color=c.NEUTRAL if mk == "o" else "0.2", label=label)
-    a.set_xscale("log")
-    a.set_yscale("log")
+    log_axes(a, noisy)
     if len(noisy) > 1:
         c.log_ticks(a.xaxis, min(noisy), max(noisy))
     a.set_xlabel("noise scale")
     a.set_ylabel("largest error over legs (median)")
     a.set_title("(c) hanging stage: weights and offsets")
-    a.legend(fontsize=9.5)
+    if noisy:
+        a.legend(fontsize=9.5)
     a = axes[1][0]
     if zf.size:
         a.hist(zf, bins=np.linspace(-5, 5, 41), density=True, color=c.NEUTRAL, alpha=0.7,
@@ -196,8 +206,7 @@ def main():
     for s in noisy:
         r = cal.rows(acc, noise_scale=s)
         a.plot(r["poses"], r["seconds_standing"], ".", color=colors[s], ms=4)
-    a.set_xscale("log")
-    a.set_yscale("log")
+    log_axes(a, noisy)
     a.set_xlabel("standing poses P")
     a.set_ylabel("standing stage [s]")
     a.set_title("(e) time of the standing stage")
@@ -214,6 +223,8 @@ def main():
                label=f"{sv}: spread {'—' if spread is None else f'{100 * spread:.2g} %'}")
         if (~conv).any():
             a.plot(r["start"][~conv], rel[~conv], "x", color=col, ms=6)
+    from matplotlib.ticker import MaxNLocator
+    a.xaxis.set_major_locator(MaxNLocator(integer=True))
     a.set_xlabel("start (x: not converged)")
     a.set_ylabel("cost / least cost − 1 [%]")
     a.set_title("(f) multistart (§4.4.2)")

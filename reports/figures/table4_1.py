@@ -119,7 +119,8 @@ def main():
            f"<p>Estimate ± standard error; below it the synthetic truth (Table 4.1's printed "
            f"values for the offsets and weights; largest difference from the ledger's table "
            f"{c.fmt(v['truth_table_max_abs_diff'], 2)}) and z = (estimate − truth)/SE, "
-           f"marked where |z| &gt; 3. Data: <code>{html.escape(c.shown_path(t.path))}</code>.</p>\n")
+           f"marked where |z| &gt; 3. Data: "
+           f"<code>{html.escape(c.shown_path(t.path))}</code>.</p>\n")
     c.atomic_write_text(args.out / f"{NAME}_table.html", out)
     c.write_values(args.out, NAME, v)
 

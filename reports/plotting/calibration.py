@@ -87,9 +87,14 @@ def load(data, name: str, columns: list[str]) -> c.Table:
 def rows(t: c.Table, **match) -> c.Table:
     """The rows whose text columns equal, and numeric columns are close to, the given values."""
     mask = np.ones(t.n, bool)
+    # text columns compared as fixed-width strings, converted once per table (object arrays
+    # compare element by element in Python: slow on the hanging residuals' ~10⁵ rows)
+    text = t.__dict__.setdefault("_text", {})
     for name, want in match.items():
         if isinstance(want, str):
-            mask &= t.str(name) == want
+            if name not in text:
+                text[name] = t.str(name).astype(str)
+            mask &= text[name] == want
         else:
             mask &= np.isclose(t[name].astype(float), want)
     return t.subset(mask)

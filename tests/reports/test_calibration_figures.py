@@ -18,7 +18,6 @@ FIGURES = REPO / "reports" / "figures"
 sys.path.insert(0, str(REPO / "reports" / "plotting"))
 
 import calibration as cal  # noqa: E402
-import common as c  # noqa: E402
 
 SCRIPTS = ("table4_1", "fig4_4", "fig4_5", "fig4_6", "table4_2", "calib_accuracy")
 SE = 0.01
