@@ -57,7 +57,7 @@ def parameter_rows(seed: int, noise: float = 1.0) -> list[list]:
     draw = np.random.default_rng([7, seed])
     rows = []
     for (leg, name), (true, se) in truth().items():
-        err = noise * se * draw.normal()
+        err = noise * se * draw.normal() if noise > 0 else 1e-13 * draw.normal()
         rows.append([leg, name, f"{true + err:.10g}", f"{noise * se:.6g}", f"{true:.10g}",
                      f"{err:.6g}", f"{err / (noise * se):.6g}" if noise > 0 else "nan"])
     return rows
@@ -185,14 +185,19 @@ def main():
         c.fail(f"{args.out}: refusing to write stand-in data under data/")
     folder = args.out / cal.STUDY
     poses = 60 if args.quick else 543
-    write(folder / "parameters.csv", cal.PARAMETER_COLUMNS, parameter_rows(1))
+    # as the study: parameters.toml and models.toml run the default robot and the noiseless one
+    write(folder / "parameters.csv", ["seed", "noise_scale"] + cal.PARAMETER_COLUMNS,
+          [[1, s_] + r for s_ in (1.0, 0.0) for r in parameter_rows(1, s_)])
     write(folder / "seeds.csv", ["seed"] + cal.PARAMETER_COLUMNS,
           [[s] + r for s in range(1, 21) for r in parameter_rows(s)])
     write(folder / "com.csv", cal.COM_COLUMNS, com_rows(12 if args.quick else 36))
     write(folder / "hanging_residuals.csv", cal.HANGING_COLUMNS,
           hanging_rows(20 if args.quick else 90))
     write(folder / "pose_residuals.csv", cal.POSE_COLUMNS, pose_rows(poses))
-    write(folder / "models.csv", cal.MODEL_COLUMNS, model_rows(poses))
+    write(folder / "models.csv", ["noise_scale", "poses"] + cal.MODEL_COLUMNS,
+          [[1.0, poses] + r for r in model_rows(poses)]
+          + [[0.0, poses] + r[:2] + [1e-20, 1e-24, -1e4, int(r[0] == "full")]
+             for r in model_rows(poses)])
     write(folder / "starts.csv", cal.START_COLUMNS, start_rows(5 if args.quick else 20))
     write(folder / "accuracy.csv", cal.ACCURACY_COLUMNS, accuracy_rows(args.quick))
     print(f"wrote {folder}/*.csv")

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Thesis Table 4.2 / §4.4.2: model selection between the four transformation-error models.
 
-Input: DATA/ch4_calibration/models.csv (calib_models: model, dof, rss, cv_mse, bic, selected)
-and pose_residuals.csv (the number of standing poses P). Output: OUT/table4_2_table.html,
+Input: DATA/ch4_calibration/models.csv (calib_models: model, dof, rss, cv_mse, bic, selected;
+the rows of the default noise scale; the number of standing poses P from its `poses` column, or
+else from pose_residuals.csv). Output: OUT/table4_2_table.html,
 OUT/values/table4_2.json.
 
 The table shows per model (the thesis' row order) its DOF, the mean test MSE of the
@@ -34,11 +35,14 @@ RSS_SLACK = 1e-9  # relative: a larger model's RSS may exceed a nested one's by 
 
 def main():
     args = c.parse_args(__doc__.splitlines()[0])
-    t = cal.load(args.data, "models.csv", cal.MODEL_COLUMNS)
-    poses = cal.load(args.data, "pose_residuals.csv", cal.POSE_COLUMNS)
-    P = int(cal.rows(poses, method="full").n)
-    if P == 0:
-        c.fail(f"{poses.path}: no poses of method 'full'")
+    t = cal.at_noise(cal.load(args.data, "models.csv", cal.MODEL_COLUMNS))
+    if "poses" in t.columns:  # the sweep's own parameter
+        P = int(t["poses"][0])
+    else:
+        poses = cal.load(args.data, "pose_residuals.csv", cal.POSE_COLUMNS)
+        P = int(cal.rows(poses, method="full").n)
+        if P == 0:
+            c.fail(f"{poses.path}: no poses of method 'full'")
     names = list(t.str("model"))
     missing = [m for m in cal.MODELS if m not in names]
     if missing or len(names) != len(set(names)):

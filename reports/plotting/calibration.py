@@ -100,6 +100,25 @@ def rows(t: c.Table, **match) -> c.Table:
     return t.subset(mask)
 
 
+DEFAULT_NOISE = 1.0  # the study's default noise scale (1 = the generator's σ's)
+
+
+def at_noise(t: c.Table, noise: float = DEFAULT_NOISE) -> c.Table:
+    """The rows of one noise scale, where a sweep ran several (parameters.toml and models.toml
+    run the default robot and the noiseless one); a table without the column, or with one noise
+    scale only, is returned whole. Exit 2 when the file has other noise scales but not this."""
+    if "noise_scale" not in t.columns:
+        return t
+    have = t["noise_scale"].astype(float)
+    if np.all(have == have[0]) and noise == DEFAULT_NOISE:
+        return t
+    r = t.subset(np.isclose(have, noise))
+    if r.n == 0:
+        c.fail(f"{t.path}: no rows with noise_scale {noise:g} (have "
+               f"{', '.join(f'{x:g}' for x in sorted(set(have)))})")
+    return r
+
+
 def flag(col: np.ndarray) -> np.ndarray:
     """A yes/no column (1/0 or true/false) as booleans."""
     if col.dtype == object:

@@ -21,6 +21,7 @@ import calibration as cal  # noqa: E402
 
 SCRIPTS = ("table4_1", "fig4_4", "fig4_5", "fig4_6", "table4_2", "calib_accuracy")
 SE = 0.01
+ZERO_ERR = 3e-14  # every error of the noiseless robot
 # z of each parameter, by its index in cal.PARAMETERS and the leg's: one force offset 3.5 SE off
 # (HL offset_fx), one torque offset −2.5, the rest ±0.5
 Z_SPECIAL = {("HL", "offset_fx"): 3.5, ("ML", "offset_ty"): -2.5}
@@ -167,12 +168,20 @@ def seeds_rows() -> list[list]:
 
 def make(data: Path) -> None:
     folder = data / cal.STUDY
-    write(folder / "parameters.csv", cal.PARAMETER_COLUMNS, parameter_rows())
+    # as the study: the default robot (noise 1) and the noiseless one (errors of round-off)
+    zero = [[r[0], r[1], r[4] + ZERO_ERR, r[3], r[4], ZERO_ERR, ZERO_ERR / r[3]]
+            for r in parameter_rows()]
+    write(folder / "parameters.csv", ["noise_scale"] + cal.PARAMETER_COLUMNS,
+          [[1.0] + r for r in parameter_rows()] + [[0.0] + r for r in zero])
     write(folder / "seeds.csv", ["seed"] + cal.PARAMETER_COLUMNS, seeds_rows())
     write(folder / "com.csv", cal.COM_COLUMNS, com_rows())
     write(folder / "hanging_residuals.csv", cal.HANGING_COLUMNS, hanging_rows())
     write(folder / "pose_residuals.csv", cal.POSE_COLUMNS, pose_rows())
-    write(folder / "models.csv", cal.MODEL_COLUMNS, model_rows())
+    # the noiseless robot's models (RSS of round-off) must not enter Table 4.2
+    write(folder / "models.csv", ["noise_scale", "poses"] + cal.MODEL_COLUMNS,
+          [[1.0, POSES] + r for r in model_rows()]
+          + [[0.0, POSES, m, DOF[m], 1e-20, 1e-24, -9e3, int(m == "com_only")]
+             for m in cal.MODELS])
     write(folder / "starts.csv", cal.START_COLUMNS, start_rows())
     write(folder / "accuracy.csv", cal.ACCURACY_COLUMNS, accuracy_rows())
 
@@ -210,6 +219,12 @@ class CalibrationFigures(unittest.TestCase):
         self.assertEqual(v["parameters"], 78)
         self.assertAlmostEqual(v["within_3se_fraction"], 77 / 78, places=12)
         self.assertAlmostEqual(v["HL_offset_fx_estimate"], 1.47 + 3.5 * SE, places=12)
+
+    def test_table_4_1_shows_the_default_noise_and_measures_the_noiseless_robot(self):
+        v = self.values["table4_1"]
+        self.assertAlmostEqual(v["HL_offset_fx_z"], 3.5, places=12)  # not the noiseless 1.0
+        for block in ("force_offset", "torque_offset", "weight", "rotation", "displacement"):
+            self.assertAlmostEqual(v[f"zero_noise_{block}_error_max"], ZERO_ERR, places=20)
 
     def test_table_4_1_knows_its_truth_is_the_thesis_table(self):
         v = self.values["table4_1"]
