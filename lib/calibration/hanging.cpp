@@ -59,13 +59,15 @@ std::string sample_where(const HangingRecord& record, Eigen::Index i) {
 
 void check_record(const HangingRecord& record, int legs, int min_samples) {
   const std::string& where = record.source.empty() ? std::string("hanging record") : record.source;
-  if (record.phi.cols() != legs || record.wrench.cols() != 6 * legs) {
-    throw core::InputError(where, "has " + std::to_string(record.phi.cols()) + " shaft angles and " +
-                                      std::to_string(record.wrench.cols()) + " wrench columns for " +
-                                      std::to_string(legs) + " legs (need K and 6K)");
+  if (record.phi.cols() != legs || record.wrench.cols() != 6 * static_cast<Eigen::Index>(legs)) {
+    throw core::InputError(where, "has " + std::to_string(record.phi.cols()) +
+                                      " shaft angles and " + std::to_string(record.wrench.cols()) +
+                                      " wrench columns for " + std::to_string(legs) +
+                                      " legs (need K and 6K)");
   }
   if (record.wrench.rows() != record.phi.rows()) {
-    throw core::InputError(where, "has " + std::to_string(record.phi.rows()) + " shaft-angle rows and " +
+    throw core::InputError(where, "has " + std::to_string(record.phi.rows()) +
+                                      " shaft-angle rows and " +
                                       std::to_string(record.wrench.rows()) + " wrench rows");
   }
   if (!record.rows.empty() && static_cast<Eigen::Index>(record.rows.size()) != record.samples()) {
@@ -73,8 +75,8 @@ void check_record(const HangingRecord& record, int legs, int min_samples) {
                                       std::to_string(record.samples()) + " samples");
   }
   if (record.samples() < min_samples) {
-    throw core::InputError(where, "has " + std::to_string(record.samples()) + " samples; the fit needs " +
-                                      std::to_string(min_samples));
+    throw core::InputError(where, "has " + std::to_string(record.samples()) +
+                                      " samples; the fit needs " + std::to_string(min_samples));
   }
   for (Eigen::Index i = 0; i < record.samples(); ++i) {
     if (!record.phi.row(i).allFinite() || !record.wrench.row(i).allFinite()) {
@@ -88,18 +90,18 @@ void check_matched(const HangingRecord& a, const HangingRecord& b, double tolera
   const std::string wa = a.source.empty() ? std::string("hanging record") : a.source;
   const std::string wb = b.source.empty() ? std::string("hanging record") : b.source;
   if (a.samples() != b.samples()) {
-    throw core::InputError(wb, "has " + std::to_string(b.samples()) + " samples where " + wa + " has " +
-                                   std::to_string(a.samples()) +
+    throw core::InputError(wb, "has " + std::to_string(b.samples()) + " samples where " + wa +
+                                   " has " + std::to_string(a.samples()) +
                                    ": paired records must sample the same shaft angles");
   }
   for (Eigen::Index i = 0; i < a.samples(); ++i) {
     for (Eigen::Index k = 0; k < a.phi.cols(); ++k) {
       const double diff = a.phi(i, k) - b.phi(i, k);
       if (std::abs(diff - std::round(diff)) > tolerance) {
-        throw core::InputError(sample_where(b, i), "shaft angle " + std::to_string(b.phi(i, k)) +
-                                                       " does not match " + std::to_string(a.phi(i, k)) +
-                                                       " at " + sample_where(a, i) + " (leg " +
-                                                       std::to_string(k + 1) + ")");
+        throw core::InputError(sample_where(b, i),
+                               "shaft angle " + std::to_string(b.phi(i, k)) + " does not match " +
+                                   std::to_string(a.phi(i, k)) + " at " + sample_where(a, i) +
+                                   " (leg " + std::to_string(k + 1) + ")");
       }
     }
   }
@@ -113,15 +115,15 @@ std::vector<RecordPair> pair_records(int legs, const std::vector<HangingRecord>&
     auto& slot = by_axis.at(static_cast<std::size_t>(record.down));
     if (slot != nullptr) {
       throw core::InputError(record.source, "is a second record hung along " +
-                                                std::string(axis_label(record.down)) + " (first: " +
-                                                slot->source + ")");
+                                                std::string(axis_label(record.down)) +
+                                                " (first: " + slot->source + ")");
     }
     slot = &record;
   }
   std::vector<RecordPair> pairs;
-  for (int a = 0; a < 3; ++a) {
-    const HangingRecord* plus = by_axis.at(static_cast<std::size_t>(2 * a));
-    const HangingRecord* minus = by_axis.at(static_cast<std::size_t>(2 * a + 1));
+  for (std::size_t a = 0; a < 3; ++a) {
+    const HangingRecord* plus = by_axis.at(2 * a);
+    const HangingRecord* minus = by_axis.at(2 * a + 1);
     if (plus != nullptr && minus != nullptr) {
       pairs.push_back({plus, minus});
     } else if (plus != nullptr || minus != nullptr) {
@@ -176,8 +178,9 @@ PairData pair_data(const RecordPair& pair, const Eigen::Matrix3d& nominal, Eigen
   data.tau_plus = 0.5 * (block(*pair.down, 3) + block(*pair.up, 3));
   mean_and_cov(f_minus, data.f_minus, data.f_minus_cov);
   mean_and_cov(f_plus, data.f_plus, data.f_plus_cov);
-  data.f_model = model == HangingModel::no_misalignment ? Eigen::Vector3d(data.e * data.e.dot(data.f_minus))
-                                                        : data.f_minus;
+  data.f_model = model == HangingModel::no_misalignment
+                     ? Eigen::Vector3d(data.e * data.e.dot(data.f_minus))
+                     : data.f_minus;
   return data;
 }
 
@@ -225,8 +228,8 @@ Eigen::Vector3d rotation_between(const Eigen::Vector3d& from, const Eigen::Vecto
 }
 
 /// One pair's estimates given the fitted CoM at each sample (3 × n).
-HangingPair estimate_pair(const RecordPair& records, const PairData& p, const Eigen::Matrix3Xd& fitted,
-                          HangingModel model) {
+HangingPair estimate_pair(const RecordPair& records, const PairData& p,
+                          const Eigen::Matrix3Xd& fitted, HangingModel model) {
   HangingPair out;
   out.down = records.down->down;
   out.axis = p.e;
@@ -241,8 +244,8 @@ HangingPair estimate_pair(const RecordPair& records, const PairData& p, const Ei
   } else {
     // d = B a, B orthonormal ⊥ f⁻; centred least squares of τ⁺ on [r̂_i] B.
     Eigen::Matrix<double, 3, 2> basis =
-        Eigen::Matrix3d(Eigen::Matrix3d::Identity() - p.f_minus * p.f_minus.transpose() /
-                                                          p.f_minus.squaredNorm())
+        Eigen::Matrix3d(Eigen::Matrix3d::Identity() -
+                        p.f_minus * p.f_minus.transpose() / p.f_minus.squaredNorm())
             .jacobiSvd(Eigen::ComputeFullU)
             .matrixU()
             .leftCols<2>();
@@ -271,7 +274,8 @@ HangingPair estimate_pair(const RecordPair& records, const PairData& p, const Ei
   }
   const Eigen::Vector3d f_o = p.f_plus - out.d;
   const Eigen::Matrix3d f_o_cov = p.f_plus_cov + d_cov;
-  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // of w with respect to f⁻ (and, for the exact model, d)
+  Eigen::Vector3d gradient =
+      Eigen::Vector3d::Zero();  // of w with respect to f⁻ (and, for the exact model, d)
   double d_term = 0.0;
   switch (model) {
     case HangingModel::exact:
@@ -290,7 +294,8 @@ HangingPair estimate_pair(const RecordPair& records, const PairData& p, const Ei
   }
   out.weight_se = std::sqrt(std::max(0.0, gradient.dot(p.f_minus_cov * gradient) + d_term));
   out.offset << f_o, tau_o;
-  out.offset_se << f_o_cov.diagonal().cwiseMax(0.0).cwiseSqrt(), tau_o_cov.diagonal().cwiseMax(0.0).cwiseSqrt();
+  out.offset_se << f_o_cov.diagonal().cwiseMax(0.0).cwiseSqrt(),
+      tau_o_cov.diagonal().cwiseMax(0.0).cwiseSqrt();
   if (model != HangingModel::no_misalignment) {
     out.s_plus = rotation_between(p.e, p.f_minus);
     out.s_minus = p.e.cross(out.d) / out.weight;  // d = [ŝ⁻] w e = w ŝ⁻ × e, ŝ⁻ ⊥ e
@@ -341,7 +346,8 @@ void validate(const HangingOptions& options) {
   }
 }
 
-HangingCalibration calibrate_hanging(const Geometry& geometry, const std::vector<HangingRecord>& records,
+HangingCalibration calibrate_hanging(const Geometry& geometry,
+                                     const std::vector<HangingRecord>& records,
                                      const HangingOptions& options) {
   validate(geometry);
   validate(options);
@@ -355,10 +361,12 @@ HangingCalibration calibrate_hanging(const Geometry& geometry, const std::vector
     std::vector<PairData> data;
     data.reserve(pairs.size());
     for (const RecordPair& pair : pairs) {
-      data.push_back(pair_data(pair, geometry.transducer[static_cast<std::size_t>(k)].R, k, options.model));
+      data.push_back(
+          pair_data(pair, geometry.transducer[static_cast<std::size_t>(k)].R, k, options.model));
       if (data.back().f_model.squaredNorm() == 0.0) {
-        throw core::InputError(pair.down->source, "leg " + geometry.legs[static_cast<std::size_t>(k)] +
-                                                      " shows no weight between the opposite records");
+        throw core::InputError(pair.down->source,
+                               "leg " + geometry.legs[static_cast<std::size_t>(k)] +
+                                   " shows no weight between the opposite records");
       }
     }
     leg.com_phi = pairs.front().down->phi.col(k);
@@ -368,7 +376,8 @@ HangingCalibration calibrate_hanging(const Geometry& geometry, const std::vector
     for (Eigen::Index i = 0; i < leg.com_phi.size(); ++i) {
       fitted.col(i) = leg.com(leg.com_phi(i));
     }
-    leg.com_fit_rms = std::sqrt((leg.com_samples - fitted).squaredNorm() / static_cast<double>(fitted.cols()));
+    leg.com_fit_rms =
+        std::sqrt((leg.com_samples - fitted).squaredNorm() / static_cast<double>(fitted.cols()));
     for (std::size_t j = 0; j < pairs.size(); ++j) {
       leg.pairs.push_back(estimate_pair(pairs[j], data[j], fitted, options.model));
     }
@@ -396,15 +405,17 @@ Eigen::MatrixXd predict_hanging(const Geometry& geometry, const HangingCalibrati
                                 const HangingRecord& record) {
   const int legs = geometry.size();
   if (static_cast<int>(calibration.legs.size()) != legs) {
-    throw core::InputError("predict_hanging", "the calibration has " + std::to_string(calibration.legs.size()) +
-                                                  " legs for a geometry of " + std::to_string(legs));
+    throw core::InputError("predict_hanging",
+                           "the calibration has " + std::to_string(calibration.legs.size()) +
+                               " legs for a geometry of " + std::to_string(legs));
   }
   check_record(record, legs, 0);
   const bool naive = calibration.options.model == HangingModel::no_misalignment;
   Eigen::MatrixXd out(record.samples(), 6 * legs);
   for (int k = 0; k < legs; ++k) {
     const LegEstimate& leg = calibration.legs[static_cast<std::size_t>(k)];
-    Eigen::Vector3d u = geometry.transducer[static_cast<std::size_t>(k)].R.transpose() * axis_vector(record.down);
+    Eigen::Vector3d u =
+        geometry.transducer[static_cast<std::size_t>(k)].R.transpose() * axis_vector(record.down);
     for (const HangingPair& pair : leg.pairs) {
       const bool is_down = pair.down == record.down;
       if (!is_down && opposite(pair.down) != record.down) {
@@ -412,14 +423,16 @@ Eigen::MatrixXd predict_hanging(const Geometry& geometry, const HangingCalibrati
       }
       const double sign = is_down ? 1.0 : -1.0;
       // u↓ = (f⁻ + d)/|f⁻ + d|, u↑ = −(f⁻ − d)/|f⁻ − d|; ±e without misalignment.
-      u = naive ? Eigen::Vector3d(sign * pair.axis) : Eigen::Vector3d(sign * (pair.f_minus + sign * pair.d).normalized());
+      u = naive ? Eigen::Vector3d(sign * pair.axis)
+                : Eigen::Vector3d(sign * (pair.f_minus + sign * pair.d).normalized());
       break;
     }
     const Eigen::Vector3d force = leg.weight * u;
+    const Eigen::Index column = 6 * static_cast<Eigen::Index>(k);
     for (Eigen::Index i = 0; i < record.samples(); ++i) {
       const Eigen::Vector3d r = leg.com(record.phi(i, k));
-      out.block<1, 3>(i, 6 * k) = (force + leg.offset.head<3>()).transpose();
-      out.block<1, 3>(i, 6 * k + 3) = (r.cross(force) + leg.offset.tail<3>()).transpose();
+      out.block<1, 3>(i, column) = (force + leg.offset.head<3>()).transpose();
+      out.block<1, 3>(i, column + 3) = (r.cross(force) + leg.offset.tail<3>()).transpose();
     }
   }
   return out;

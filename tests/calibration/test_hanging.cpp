@@ -8,9 +8,9 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -39,7 +39,9 @@ struct Draw {
   Vector3d vector(double scale) { return scale * Vector3d(normal(), normal(), normal()); }
   Vector3d direction() { return vector(1.0).normalized(); }
   /// A rotation by an angle drawn in [0, max_angle] about a random axis.
-  Matrix3d rotation(double max_angle) { return rotation_from_vector(uniform(0.0, max_angle) * direction()); }
+  Matrix3d rotation(double max_angle) {
+    return rotation_from_vector(uniform(0.0, max_angle) * direction());
+  }
 };
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -61,7 +63,8 @@ Truth make_truth(int legs, Draw& draw) {
     t.geometry.legs.push_back("L" + std::to_string(k));
     Frame frame;
     if (k % 3 == 1) {
-      frame.R = Eigen::AngleAxisd(std::numbers::pi, Vector3d::UnitZ()).toRotationMatrix();  // mirrored
+      frame.R =
+          Eigen::AngleAxisd(std::numbers::pi, Vector3d::UnitZ()).toRotationMatrix();  // mirrored
     } else if (k % 3 == 2) {
       frame.R = draw.rotation(std::numbers::pi);
     }
@@ -94,8 +97,8 @@ Vector3d gravity_direction(const Truth& t, int k, BodyAxis down, const Matrix3d&
   return body_to_true * tilt * axis_vector(down);
 }
 
-HangingRecord make_record(const Truth& t, BodyAxis down, const Matrix3d& tilt, int samples, double cycles,
-                          double force_noise, double torque_noise, Draw& draw) {
+HangingRecord make_record(const Truth& t, BodyAxis down, const Matrix3d& tilt, int samples,
+                          double cycles, double force_noise, double torque_noise, Draw& draw) {
   const int legs = t.geometry.size();
   HangingRecord record;
   record.down = down;
@@ -103,11 +106,13 @@ HangingRecord make_record(const Truth& t, BodyAxis down, const Matrix3d& tilt, i
   record.phi.resize(samples, legs);
   record.wrench.resize(samples, 6 * legs);
   for (int k = 0; k < legs; ++k) {
-    const Vector3d force = t.weight[static_cast<std::size_t>(k)] * gravity_direction(t, k, down, tilt);
+    const Vector3d force =
+        t.weight[static_cast<std::size_t>(k)] * gravity_direction(t, k, down, tilt);
     for (int i = 0; i < samples; ++i) {
       const double phi = t.phase[static_cast<std::size_t>(k)] + cycles * i / samples;
       record.phi(i, k) = phi;
-      Wrench w = force_at(force, t.com[static_cast<std::size_t>(k)](phi)) + t.offset[static_cast<std::size_t>(k)];
+      Wrench w = force_at(force, t.com[static_cast<std::size_t>(k)](phi)) +
+                 t.offset[static_cast<std::size_t>(k)];
       w.head<3>() += draw.vector(force_noise);
       w.tail<3>() += draw.vector(torque_noise);
       record.wrench.block<1, 6>(i, 6 * k) = w.transpose();
@@ -122,19 +127,21 @@ struct Experiment {
   std::vector<Matrix3d> tilt;  // per record
 };
 
-Experiment make_experiment(std::uint64_t seed, int legs, const std::vector<BodyAxis>& axes, double max_tilt,
-                           int samples = 400, double cycles = 2.0, double force_noise = 0.0,
-                           double torque_noise = 0.0) {
+Experiment make_experiment(std::uint64_t seed, int legs, const std::vector<BodyAxis>& axes,
+                           double max_tilt, int samples = 400, double cycles = 2.0,
+                           double force_noise = 0.0, double torque_noise = 0.0) {
   Draw draw(seed);
   Experiment e{make_truth(legs, draw), {}, {}};
   for (const BodyAxis axis : axes) {
     e.tilt.push_back(draw.rotation(max_tilt));
-    e.records.push_back(make_record(e.truth, axis, e.tilt.back(), samples, cycles, force_noise, torque_noise, draw));
+    e.records.push_back(make_record(e.truth, axis, e.tilt.back(), samples, cycles, force_noise,
+                                    torque_noise, draw));
   }
   return e;
 }
 
-const std::vector<BodyAxis> kFour = {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::plus_z, BodyAxis::minus_z};
+const std::vector<BodyAxis> kFour = {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::plus_z,
+                                     BodyAxis::minus_z};
 
 HangingOptions pointwise(HangingModel model = HangingModel::exact) {
   HangingOptions o;
@@ -220,7 +227,8 @@ TEST(SmoothCom, LagsNoiselessDataByTheStatedMultipleOfTheSecondDifference) {
   double max_second = 0.0;
   for (int i = 1; i + 1 < n; ++i) {
     const Vector3d second = m.col(i + 1) - 2.0 * m.col(i) + m.col(i - 1);
-    EXPECT_LT((m.col(i) - P * r.col(i) - c * second).norm(), 1e-13) << i;  // the stationarity identity
+    EXPECT_LT((m.col(i) - P * r.col(i) - c * second).norm(), 1e-13)
+        << i;  // the stationarity identity
     max_second = std::max(max_second, (r.col(i + 1) - 2.0 * r.col(i) + r.col(i - 1)).norm());
   }
   for (int i = 5; i + 5 < n; ++i) {
@@ -232,7 +240,8 @@ TEST(SmoothCom, RefusesNonPositiveVariances) {
   const Matrix3Xd torque = Matrix3Xd::Zero(3, 3);
   EXPECT_THROW((void)smooth_com(torque, Vector3d::UnitX(), 0.0, 0.01), core::InputError);
   EXPECT_THROW((void)smooth_com(torque, Vector3d::UnitX(), 0.01, -1.0), core::InputError);
-  EXPECT_THROW((void)smooth_com(torque, Vector3d::UnitX(), 0.01, 0.01, Vector3d::Zero(), 0.0), core::InputError);
+  EXPECT_THROW((void)smooth_com(torque, Vector3d::UnitX(), 0.01, 0.01, Vector3d::Zero(), 0.0),
+               core::InputError);
 }
 
 // ---- exact recovery ----------------------------------------------------------------------------
@@ -241,7 +250,8 @@ void expect_exact_parameters(const Experiment& e, const HangingCalibration& cal,
   for (int k = 0; k < e.truth.geometry.size(); ++k) {
     const auto K = static_cast<std::size_t>(k);
     EXPECT_NEAR(cal.legs[K].weight, e.truth.weight[K], tolerance) << "leg " << k;
-    EXPECT_LT((cal.legs[K].offset - e.truth.offset[K]).cwiseAbs().maxCoeff(), tolerance) << "leg " << k;
+    EXPECT_LT((cal.legs[K].offset - e.truth.offset[K]).cwiseAbs().maxCoeff(), tolerance)
+        << "leg " << k;
     for (const HangingPair& pair : cal.legs[K].pairs) {
       EXPECT_NEAR(pair.d.dot(pair.f_minus), 0.0, 1e-9);
       EXPECT_NEAR(pair.weight, e.truth.weight[K], tolerance);
@@ -259,9 +269,11 @@ TEST(CalibrateHanging, RecoversEveryParameterFromNoiselessRecordsWithMisalignmen
       const PeriodicFit& truth = e.truth.com[static_cast<std::size_t>(k)];
       ASSERT_EQ(leg.com_samples.cols(), 400);
       for (Eigen::Index i = 0; i < leg.com_samples.cols(); ++i) {
-        ASSERT_LT((leg.com_samples.col(i) - truth(leg.com_phi(i))).norm(), 1e-9) << "leg " << k << " sample " << i;
+        ASSERT_LT((leg.com_samples.col(i) - truth(leg.com_phi(i))).norm(), 1e-9)
+            << "leg " << k << " sample " << i;
       }
-      EXPECT_LT((leg.com.coefficients.leftCols(5) - truth.coefficients).cwiseAbs().maxCoeff(), 1e-9);
+      EXPECT_LT((leg.com.coefficients.leftCols(5) - truth.coefficients).cwiseAbs().maxCoeff(),
+                1e-9);
       EXPECT_LT(leg.com.coefficients.rightCols(4).cwiseAbs().maxCoeff(), 1e-9);  // harmonics 3, 4
       EXPECT_LT(leg.com_fit_rms, 1e-10);
       EXPECT_EQ(leg.offset_se.maxCoeff(), leg.offset_se.maxCoeff());  // finite
@@ -270,9 +282,10 @@ TEST(CalibrateHanging, RecoversEveryParameterFromNoiselessRecordsWithMisalignmen
 }
 
 TEST(CalibrateHanging, UsesAThirdPairAndIgnoresTheLoneUprightRecord) {
-  const Experiment e = make_experiment(11, 2, {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::plus_y,
-                                               BodyAxis::minus_y, BodyAxis::minus_z},
-                                       6.0 * kDeg);
+  const Experiment e = make_experiment(
+      11, 2,
+      {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::plus_y, BodyAxis::minus_y, BodyAxis::minus_z},
+      6.0 * kDeg);
   const HangingCalibration cal = calibrate_hanging(e.truth.geometry, e.records, pointwise());
   ASSERT_EQ(cal.legs[0].pairs.size(), 2U);
   EXPECT_EQ(cal.legs[0].pairs[1].down, BodyAxis::plus_y);
@@ -282,7 +295,8 @@ TEST(CalibrateHanging, UsesAThirdPairAndIgnoresTheLoneUprightRecord) {
                                            {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::plus_y,
                                             BodyAxis::minus_y, BodyAxis::plus_z, BodyAxis::minus_z},
                                            6.0 * kDeg);
-  const HangingCalibration cal3 = calibrate_hanging(three.truth.geometry, three.records, pointwise());
+  const HangingCalibration cal3 =
+      calibrate_hanging(three.truth.geometry, three.records, pointwise());
   ASSERT_EQ(cal3.legs[1].pairs.size(), 3U);
   expect_exact_parameters(three, cal3, 1e-9);
 }
@@ -306,14 +320,18 @@ TEST(CalibrateHanging, TheSmootherRecoversTheComWithinItsLagBias) {
     for (Eigen::Index i = 1; i + 1 < n; ++i) {
       const PeriodicFit& r = e.truth.com[K];
       max_second = std::max(
-          max_second, (r(leg.com_phi(i + 1)) - 2.0 * r(leg.com_phi(i)) + r(leg.com_phi(i - 1))).norm());
+          max_second,
+          (r(leg.com_phi(i + 1)) - 2.0 * r(leg.com_phi(i)) + r(leg.com_phi(i - 1))).norm());
     }
     for (Eigen::Index i = 5; i + 5 < n; ++i) {
-      ASSERT_LT((leg.com_samples.col(i) - e.truth.com[K](leg.com_phi(i))).norm(), 2.0 * c * max_second)
+      ASSERT_LT((leg.com_samples.col(i) - e.truth.com[K](leg.com_phi(i))).norm(),
+                2.0 * c * max_second)
           << "leg " << k << " sample " << i;
     }
     EXPECT_GT(leg.com_fit_rms, 0.0);  // the lag is real, and small:
-    EXPECT_LT((leg.com.coefficients.leftCols(5) - e.truth.com[K].coefficients).cwiseAbs().maxCoeff(), 1e-5);
+    EXPECT_LT(
+        (leg.com.coefficients.leftCols(5) - e.truth.com[K].coefficients).cwiseAbs().maxCoeff(),
+        1e-5);
   }
 }
 
@@ -327,7 +345,8 @@ TEST(CalibrateHanging, TheThesisFirstOrderWeightFallsShortByOneMinusCosineOfHalf
     for (std::size_t j = 0; j < 2; ++j) {
       // Records 2j (↓) and 2j + 1 (↑); α between u↓ and u↑' = −u↑.
       const Vector3d down = gravity_direction(e.truth, k, kFour[2 * j], e.tilt[2 * j]);
-      const Vector3d up_flipped = -gravity_direction(e.truth, k, kFour[2 * j + 1], e.tilt[2 * j + 1]);
+      const Vector3d up_flipped =
+          -gravity_direction(e.truth, k, kFour[2 * j + 1], e.tilt[2 * j + 1]);
       const double alpha = std::acos(std::clamp(down.dot(up_flipped), -1.0, 1.0));
       EXPECT_GT(alpha, 0.0);
       EXPECT_NEAR(w - cal.legs[K].pairs[j].weight, w * (1.0 - std::cos(alpha / 2.0)), 1e-9);
@@ -335,7 +354,9 @@ TEST(CalibrateHanging, TheThesisFirstOrderWeightFallsShortByOneMinusCosineOfHalf
   }
 }
 
-double rms(const Eigen::MatrixXd& m) { return std::sqrt(m.squaredNorm() / static_cast<double>(m.size())); }
+double rms(const Eigen::MatrixXd& m) {
+  return std::sqrt(m.squaredNorm() / static_cast<double>(m.size()));
+}
 
 TEST(CalibrateHanging, LeavesResidualsWithoutTheMisalignmentModelThatTheExactModelRemoves) {
   const Experiment e = make_experiment(5, 3, kFour, 5.0 * kDeg);
@@ -361,8 +382,10 @@ TEST(CalibrateHanging, ReportsTheMisalignmentsAsTheThesisDefinesThem) {
     EXPECT_NEAR(pair.s_plus.dot(pair.axis), 0.0, 1e-12);
     EXPECT_NEAR(pair.s_minus.dot(pair.axis), 0.0, 1e-12);
     // ŝ⁺ turns e onto f⁻/|f⁻|; d = [ŝ⁻] w e to first order (d ⊥ e up to the tilt).
-    EXPECT_LT((rotation_from_vector(pair.s_plus) * pair.axis - pair.f_minus.normalized()).norm(), 1e-12);
-    EXPECT_LT((pair.weight * pair.s_minus.cross(pair.axis) - pair.d).norm(), 0.1 * pair.d.norm() + 1e-12);
+    EXPECT_LT((rotation_from_vector(pair.s_plus) * pair.axis - pair.f_minus.normalized()).norm(),
+              1e-12);
+    EXPECT_LT((pair.weight * pair.s_minus.cross(pair.axis) - pair.d).norm(),
+              0.1 * pair.d.norm() + 1e-12);
   }
 }
 
@@ -399,9 +422,10 @@ TEST(CalibrateHanging, StandardErrorsMatchTheScatterOverSeeds) {
 // ---- records that do not pair ------------------------------------------------------------------
 
 TEST(CalibrateHanging, RefusesARecordWithoutItsOppositeNamingIt) {
-  const Experiment e = make_experiment(20, 2, {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::plus_z,
-                                               BodyAxis::minus_z, BodyAxis::plus_y},
-                                       3.0 * kDeg, 50);
+  const Experiment e = make_experiment(
+      20, 2,
+      {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::plus_z, BodyAxis::minus_z, BodyAxis::plus_y},
+      3.0 * kDeg, 50);
   try {
     (void)calibrate_hanging(e.truth.geometry, e.records, pointwise());
     FAIL() << "a lone +y record must be refused";
@@ -411,7 +435,8 @@ TEST(CalibrateHanging, RefusesARecordWithoutItsOppositeNamingIt) {
 }
 
 TEST(CalibrateHanging, RefusesASinglePairTheCoMWouldBeFreeAlongFMinus) {
-  const Experiment e = make_experiment(21, 2, {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::minus_z}, 3.0 * kDeg, 50);
+  const Experiment e = make_experiment(
+      21, 2, {BodyAxis::plus_x, BodyAxis::minus_x, BodyAxis::minus_z}, 3.0 * kDeg, 50);
   EXPECT_THROW((void)calibrate_hanging(e.truth.geometry, e.records, pointwise()), core::InputError);
 }
 
@@ -433,7 +458,8 @@ TEST(CalibrateHanging, RefusesRecordsThatDoNotMatchSampleBySample) {
 
   Experiment shorter = make_experiment(22, 2, kFour, 3.0 * kDeg, 50);
   shorter.records[2] = make_experiment(22, 2, kFour, 3.0 * kDeg, 49).records[2];
-  EXPECT_THROW((void)calibrate_hanging(shorter.truth.geometry, shorter.records, pointwise()), core::InputError);
+  EXPECT_THROW((void)calibrate_hanging(shorter.truth.geometry, shorter.records, pointwise()),
+               core::InputError);
 }
 
 TEST(CalibrateHanging, RefusesBadWidthsNonFiniteEntriesTooFewSamplesAndDuplicates) {
@@ -441,7 +467,8 @@ TEST(CalibrateHanging, RefusesBadWidthsNonFiniteEntriesTooFewSamplesAndDuplicate
   const auto refuses = [&](auto&& edit) {
     Experiment e = good;
     edit(e);
-    EXPECT_THROW((void)calibrate_hanging(e.truth.geometry, e.records, pointwise()), core::InputError);
+    EXPECT_THROW((void)calibrate_hanging(e.truth.geometry, e.records, pointwise()),
+                 core::InputError);
   };
   refuses([](Experiment& e) { e.records[0].wrench.conservativeResize(Eigen::NoChange, 11); });
   refuses([](Experiment& e) { e.records[0].phi.conservativeResize(Eigen::NoChange, 1); });
@@ -474,12 +501,14 @@ TEST(CalibrateHanging, CalibratesTheThesisSizedExperimentQuickly) {
   const Experiment e = make_experiment(30, 6, kFour, 5.0 * kDeg, 90000, 10.0, 0.05, 0.01);
   const auto start = std::chrono::steady_clock::now();
   const HangingCalibration cal = calibrate_hanging(e.truth.geometry, e.records);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RecordProperty("seconds", std::to_string(seconds));
   std::printf("calibrate_hanging, 4 x 90000 samples x 6 legs (smoother): %.3f s\n", seconds);
   for (int k = 0; k < 6; ++k) {
     const auto K = static_cast<std::size_t>(k);
-    EXPECT_LT(std::abs(cal.legs[K].weight - e.truth.weight[K]), 5.0 * cal.legs[K].weight_se + 1e-12);
+    EXPECT_LT(std::abs(cal.legs[K].weight - e.truth.weight[K]),
+              5.0 * cal.legs[K].weight_se + 1e-12);
   }
 }
 
