@@ -14,8 +14,11 @@
 // then d = B a (B: an orthonormal basis ⊥ f⁻) and τ_o from the centred least squares
 // τ⁺_i − mean τ⁺ = [r̂_i − mean r̂] B a, τ_o = mean τ⁺ − mean r̂ × d. The regressor is the fitted
 // r̂(φ_i), not the raw samples: their noise (σ_τ/|f⁻|, centimetres at the thesis' noise) would
-// attenuate d (errors in variables); on data whose CoM is a series of at most H harmonics the
-// two are the same.
+// attenuate d (errors in variables). Nor does the fit's own error bias d: the residual r_i − r̂_i
+// is, component by component, orthogonal over the samples to every basis function, and r̂_i − r̄
+// is a combination of them, so the cross term Σ_i X_iᵀ (−[d])(r_i − r̂_i) of the normal equations
+// vanishes (r̄ = mean r̂ = mean r too). On noiseless data the weights and offsets are therefore
+// exact with `pointwise` whatever the CoM's shape and H (tested).
 //
 // Reconciling the pairs' CoMs (§4.3.1.3). Each pair j fixes r up to r_j + p_j f̂_j. The thesis
 // equates two pairs (p, p' by least squares) and averages; that is min over r, p_j of

@@ -57,7 +57,7 @@ struct Truth {
   std::vector<double> phase;       // turns
 };
 
-Truth make_truth(int legs, Draw& draw) {
+Truth make_truth(int legs, Draw& draw, int harmonics = 2) {
   Truth t;
   for (int k = 0; k < legs; ++k) {
     t.geometry.legs.push_back("L" + std::to_string(k));
@@ -76,9 +76,9 @@ Truth make_truth(int legs, Draw& draw) {
     t.offset.push_back(offset);
     t.mounting.push_back(draw.rotation(3.0 * kDeg));
     PeriodicFit com;
-    com.coefficients = Matrix3Xd(3, 5);
+    com.coefficients = Matrix3Xd(3, 1 + 2 * harmonics);
     com.coefficients.col(0) = Vector3d(0.01, 0.02, -0.12) + draw.vector(0.01);
-    for (int c = 1; c < 5; ++c) {
+    for (int c = 1; c < 1 + 2 * harmonics; ++c) {
       com.coefficients.col(c) = draw.vector(0.02 / c);
     }
     t.com.push_back(com);
@@ -129,9 +129,10 @@ struct Experiment {
 
 Experiment make_experiment(std::uint64_t seed, int legs, const std::vector<BodyAxis>& axes,
                            double max_tilt, int samples = 400, double cycles = 2.0,
-                           double force_noise = 0.0, double torque_noise = 0.0) {
+                           double force_noise = 0.0, double torque_noise = 0.0,
+                           int com_harmonics = 2) {
   Draw draw(seed);
-  Experiment e{make_truth(legs, draw), {}, {}};
+  Experiment e{make_truth(legs, draw, com_harmonics), {}, {}};
   for (const BodyAxis axis : axes) {
     e.tilt.push_back(draw.rotation(max_tilt));
     e.records.push_back(make_record(e.truth, axis, e.tilt.back(), samples, cycles, force_noise,
@@ -279,6 +280,18 @@ TEST(CalibrateHanging, RecoversEveryParameterFromNoiselessRecordsWithMisalignmen
       EXPECT_EQ(leg.offset_se.maxCoeff(), leg.offset_se.maxCoeff());  // finite
     }
   }
+}
+
+TEST(CalibrateHanging, RecoversWeightsAndOffsetsExactlyWhenThePeriodicFitCannotFollowTheCom) {
+  // A CoM with eight harmonics fitted with two: the fit's residual is orthogonal (over the
+  // samples) to everything the fit spans, so it drops out of the d regression, and the weights
+  // and offsets stay exact however poorly r̂ follows r.
+  const Experiment e = make_experiment(14, 3, kFour, 10.0 * kDeg, 500, 2.0, 0.0, 0.0, 8);
+  HangingOptions options = pointwise();
+  options.harmonics = 2;
+  const HangingCalibration cal = calibrate_hanging(e.truth.geometry, e.records, options);
+  EXPECT_GT(cal.legs[0].com_fit_rms, 1e-4);
+  expect_exact_parameters(e, cal, 1e-9);
 }
 
 TEST(CalibrateHanging, UsesAThirdPairAndIgnoresTheLoneUprightRecord) {
