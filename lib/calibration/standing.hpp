@@ -44,9 +44,11 @@
 namespace slipwalk::calibration {
 
 enum class MountingModel { full, shared_translation, translations_only, com_only };
-inline constexpr MountingModel kMountingModels[] = {MountingModel::full, MountingModel::shared_translation,
-                                                    MountingModel::translations_only, MountingModel::com_only};
-[[nodiscard]] std::string_view model_label(MountingModel model);  ///< "full", "shared_translation", ...
+inline constexpr MountingModel kMountingModels[] = {
+    MountingModel::full, MountingModel::shared_translation, MountingModel::translations_only,
+    MountingModel::com_only};
+[[nodiscard]] std::string_view model_label(
+    MountingModel model);  ///< "full", "shared_translation", ...
 [[nodiscard]] int model_dof(MountingModel model, int legs);
 
 enum class BalanceTarget { chassis, thesis_literal };
@@ -58,8 +60,8 @@ struct MountingOptions {
   MountingSolver solver = MountingSolver::alternating;
   BalanceTarget target = BalanceTarget::chassis;
   double torque_weight = 10.0;  ///< κ
-  double tolerance = 1e-10;     ///< alternating: largest parameter change; Ceres: relative cost change
-  int max_iterations = 1000;    ///< alternating sweeps, or Ceres iterations
+  double tolerance = 1e-10;  ///< alternating: largest parameter change; Ceres: relative cost change
+  int max_iterations = 1000;  ///< alternating sweeps, or Ceres iterations
 };
 
 /// Throws core::InputError("mounting.<field>", ...) for κ not positive and finite, a tolerance
@@ -68,26 +70,27 @@ void validate(const MountingOptions& options);
 
 /// A starting point (identity rotations and zero displacements by default).
 struct MountingStart {
-  std::vector<Eigen::Matrix3d> rotation;     ///< (K)
-  std::vector<Eigen::Vector3d> displacement; ///< (K); a shared model starts from their mean
+  std::vector<Eigen::Matrix3d> rotation;      ///< (K)
+  std::vector<Eigen::Vector3d> displacement;  ///< (K); a shared model starts from their mean
 };
 
 struct MountingEstimate {
   MountingModel model = MountingModel::full;
   MountingSolver solver = MountingSolver::alternating;
   BalanceTarget target = BalanceTarget::chassis;
-  std::vector<Eigen::Matrix3d> rotation;       ///< (K) R̃_k (identity where the model fixes it)
-  std::vector<Eigen::Vector3d> displacement;   ///< (K) u_k, m (all equal in a shared model)
-  std::vector<Eigen::Vector3d> rotation_se;    ///< (K) rad, of the rotation vector; 0 where fixed
-  std::vector<Eigen::Vector3d> displacement_se;///< (K) m
-  double chassis_weight = 0.0;  ///< G_ch used, N
-  double rss = 0.0;             ///< Σ_p ‖e_p‖²_K at the solution
+  std::vector<Eigen::Matrix3d> rotation;         ///< (K) R̃_k (identity where the model fixes it)
+  std::vector<Eigen::Vector3d> displacement;     ///< (K) u_k, m (all equal in a shared model)
+  std::vector<Eigen::Vector3d> rotation_se;      ///< (K) rad, of the rotation vector; 0 where fixed
+  std::vector<Eigen::Vector3d> displacement_se;  ///< (K) m
+  double chassis_weight = 0.0;                   ///< G_ch used, N
+  double rss = 0.0;                              ///< Σ_p ‖e_p‖²_K at the solution
   Eigen::Index poses = 0;
   int dof = 0;
-  int iterations = 0;           ///< alternating sweeps or Ceres iterations
+  int iterations = 0;  ///< alternating sweeps or Ceres iterations
   bool converged = false;
-  double seconds = 0.0;         ///< wall time of the solve
-  double smallest_singular_value = 0.0;  ///< of K^{1/2} J at the solution (the gauge's conditioning)
+  double seconds = 0.0;  ///< wall time of the solve
+  double smallest_singular_value =
+      0.0;  ///< of K^{1/2} J at the solution (the gauge's conditioning)
 };
 
 /// Fits the chosen model to `poses` (all of them) given the hanging stage's offsets, weights and
@@ -100,7 +103,8 @@ struct MountingEstimate {
                                             const MountingStart& start = {});
 
 /// e_p for every pose (P × 6), in W (force N, torque N·m about C, unweighted), under `estimate`.
-[[nodiscard]] Eigen::MatrixXd balance_residuals(const Geometry& geometry, const StandingPoses& poses,
+[[nodiscard]] Eigen::MatrixXd balance_residuals(const Geometry& geometry,
+                                                const StandingPoses& poses,
                                                 const HangingCalibration& hanging,
                                                 const MountingEstimate& estimate);
 
@@ -122,7 +126,8 @@ struct ModelScore {
 
 /// Table 4.2: every model fitted to all poses (RSS, BIC) and by `folds`-fold cross-validation over
 /// a seeded shuffle of the poses (the same folds for every model). `options.model` is ignored.
-[[nodiscard]] std::vector<ModelScore> score_models(const Geometry& geometry, const StandingPoses& poses,
+[[nodiscard]] std::vector<ModelScore> score_models(const Geometry& geometry,
+                                                   const StandingPoses& poses,
                                                    const HangingCalibration& hanging,
                                                    const MountingOptions& options, int folds = 5,
                                                    std::uint64_t seed = 1);
@@ -130,11 +135,9 @@ struct ModelScore {
 /// §4.4.2's multistart: `starts` fits from random starts (each rotation by a uniform angle below
 /// `max_angle` about each axis, each displacement uniform in a ball of radius `max_displacement`;
 /// the thesis: 15° and a third of the robot's 73 cm), seeded; the first start is the default one.
-[[nodiscard]] std::vector<MountingEstimate> multistart(const Geometry& geometry, const StandingPoses& poses,
-                                                       const HangingCalibration& hanging,
-                                                       const MountingOptions& options, int starts = 20,
-                                                       std::uint64_t seed = 1,
-                                                       double max_angle = 0.2617993877991494,
-                                                       double max_displacement = 0.73 / 3.0);
+[[nodiscard]] std::vector<MountingEstimate> multistart(
+    const Geometry& geometry, const StandingPoses& poses, const HangingCalibration& hanging,
+    const MountingOptions& options, int starts = 20, std::uint64_t seed = 1,
+    double max_angle = 0.2617993877991494, double max_displacement = 0.73 / 3.0);
 
 }  // namespace slipwalk::calibration
