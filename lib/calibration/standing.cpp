@@ -140,8 +140,8 @@ BalanceData prepare(const Geometry& geometry, const StandingPoses& poses,
     throw core::InputError("geometry.robot_weight", "is not more than the legs' weights together");
   }
   const Eigen::Index count = poses.poses();
-  if (poses.wrench.rows() != count || poses.wrench.cols() != 6 * legs || poses.phi.cols() != legs ||
-      static_cast<Eigen::Index>(poses.attitude.size()) != count) {
+  if (poses.wrench.rows() != count || poses.wrench.cols() != Eigen::Index{6} * legs ||
+      poses.phi.cols() != legs || static_cast<Eigen::Index>(poses.attitude.size()) != count) {
     throw core::InputError(poses.source.empty() ? "poses" : poses.source,
                            "needs " + std::to_string(legs) + " shaft angles, " +
                                std::to_string(6 * legs) +
@@ -162,7 +162,7 @@ BalanceData prepare(const Geometry& geometry, const StandingPoses& poses,
     terms.com.resize(3, legs);
     for (int k = 0; k < legs; ++k) {
       const LegEstimate& leg = hanging.legs[static_cast<std::size_t>(k)];
-      const Wrench w = poses.wrench.row(p).segment<6>(6 * k).transpose() - leg.offset;
+      const Wrench w = poses.wrench.row(p).segment<6>(Eigen::Index{6} * k).transpose() - leg.offset;
       terms.force.col(k) = w.head<3>();
       terms.torque.col(k) = w.tail<3>();
       terms.com.col(k) = leg.com(poses.phi(p, k));
@@ -267,7 +267,7 @@ Eigen::MatrixXd naive_residuals(const Geometry& geometry, const StandingPoses& p
   if (!(cycles > 0.0) || !std::isfinite(cycles)) {
     throw core::InputError("cycles", "must be a positive number of turns");
   }
-  if (air.samples() < 1 || air.phi.cols() != legs || air.wrench.cols() != 6 * legs ||
+  if (air.samples() < 1 || air.phi.cols() != legs || air.wrench.cols() != Eigen::Index{6} * legs ||
       air.wrench.rows() != air.samples()) {
     throw core::InputError(air_where, "needs samples with " + std::to_string(legs) +
                                           " shaft angles and " + std::to_string(6 * legs) +
@@ -290,7 +290,8 @@ Eigen::MatrixXd naive_residuals(const Geometry& geometry, const StandingPoses& p
       if (i > 0 && std::abs(air.phi(i, k) - air.phi(0, k)) >= cycles) {
         break;
       }
-      bias[static_cast<std::size_t>(k)] += air.wrench.row(i).segment<6>(6 * k).transpose();
+      bias[static_cast<std::size_t>(k)] +=
+          air.wrench.row(i).segment<6>(Eigen::Index{6} * k).transpose();
       ++n;
     }
     bias[static_cast<std::size_t>(k)] /= static_cast<double>(n);
@@ -299,8 +300,8 @@ Eigen::MatrixXd naive_residuals(const Geometry& geometry, const StandingPoses& p
   for (Eigen::Index p = 0; p < poses.poses(); ++p) {
     Wrench sum = Wrench::Zero();
     for (int k = 0; k < legs; ++k) {
-      const Wrench w =
-          poses.wrench.row(p).segment<6>(6 * k).transpose() - bias[static_cast<std::size_t>(k)];
+      const Wrench w = poses.wrench.row(p).segment<6>(Eigen::Index{6} * k).transpose() -
+                       bias[static_cast<std::size_t>(k)];
       sum += transform_wrench(geometry.transducer[static_cast<std::size_t>(k)], w);
     }
     const Eigen::Matrix3d& a = data.poses[static_cast<std::size_t>(p)].attitude;

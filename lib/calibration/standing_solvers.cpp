@@ -83,19 +83,23 @@ Mat3<T> rotation_of(RotationParam kind, const T* x) {
 template <typename T, typename RotationAt, typename DisplacementAt>
 Eigen::Matrix<T, 6, 1> weighted_residual(const BalanceData& data, Eigen::Index p,
                                          RotationAt&& rotation, DisplacementAt&& displacement) {
+  // Mixed double × T products (Ceres declares them to Eigen) keep the differentiated part small:
+  // only R̃_k and u_k carry derivatives.
   const PoseTerms& pose = data.poses[static_cast<std::size_t>(p)];
-  Vec3<T> force = (data.chassis_weight * pose.down).cast<T>();
+  Vec3<T> force = (data.chassis_weight * pose.down).template cast<T>();
   Vec3<T> torque = Vec3<T>::Zero();
   for (int k = 0; k < data.legs; ++k) {
     const auto ks = static_cast<std::size_t>(k);
-    const Mat3<T> r = data.nominal_rotation[ks].cast<T>() * rotation(k);
-    const Vec3<T> c = data.nominal_position[ks].cast<T>() + displacement(k);
-    const Vec3<T> v = r * pose.force.col(k).cast<T>();
+    const Mat3<T> tilt = rotation(k);
+    const Eigen::Matrix3d& nominal = data.nominal_rotation[ks];
+    const Vec3<T> c = displacement(k) + data.nominal_position[ks];
+    const Vec3<T> v = nominal * (tilt * pose.force.col(k));
     force += v;
-    torque += r * pose.torque.col(k).cast<T>() + c.cross(v);
+    torque += nominal * (tilt * pose.torque.col(k)) + c.cross(v);
     if (data.target == BalanceTarget::thesis_literal) {
-      const Vec3<T> w = (data.leg_weight[ks] * pose.down).cast<T>();
-      torque -= (c + r * pose.com.col(k).cast<T>()).cross(w);
+      const Eigen::Vector3d w = data.leg_weight[ks] * pose.down;
+      const Vec3<T> x = c + nominal * (tilt * pose.com.col(k));
+      torque -= x.cross(w.cast<T>());
     }
   }
   Eigen::Matrix<T, 6, 1> e;
@@ -193,11 +197,12 @@ struct Blocks {
 
 /// Adds every pose's residual block to `problem` over `blocks`.
 void add_poses(ceres::Problem& problem, const BalanceData& data, Blocks& blocks) {
+  const int displacements = blocks.shared ? 1 : data.legs;
   std::vector<double*> pointers;
+  pointers.reserve(static_cast<std::size_t>(data.legs) + static_cast<std::size_t>(displacements));
   for (int k = 0; k < data.legs; ++k) {
     pointers.push_back(blocks.rotation_block(k));
   }
-  const int displacements = blocks.shared ? 1 : data.legs;
   for (int k = 0; k < displacements; ++k) {
     pointers.push_back(blocks.displacement_block(k));
   }
