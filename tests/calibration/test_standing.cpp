@@ -125,7 +125,7 @@ Scenario make_scenario(std::uint64_t seed, const ScenarioOptions& o = {}) {
     frame[k].p = s.geometry.transducer[k].p + s.truth.displacement[k];
   }
   s.poses.phi.resize(o.poses, kLegs);
-  s.poses.wrench.resize(o.poses, 6 * kLegs);
+  s.poses.wrench.resize(o.poses, Eigen::Index{6} * kLegs);
   s.poses.source = "test poses";
   for (Eigen::Index p = 0; p < o.poses; ++p) {
     const Matrix3d attitude =
@@ -156,7 +156,7 @@ Scenario make_scenario(std::uint64_t seed, const ScenarioOptions& o = {}) {
         reading(i) += o.force_noise * draw.normal();
         reading(3 + i) += o.torque_noise * draw.normal();
       }
-      s.poses.wrench.row(p).segment<6>(6 * k) = reading.transpose();
+      s.poses.wrench.row(p).segment<6>(Eigen::Index{6} * k) = reading.transpose();
     }
   }
   return s;
@@ -297,7 +297,7 @@ TEST(Standing, TheNaiveTareOfAnUprightRobotLeavesExactlyTheLegsGravityMoment) {
   air.down = BodyAxis::minus_z;
   const int n = 50;
   air.phi.resize(n, kLegs);
-  air.wrench.resize(n, 6 * kLegs);
+  air.wrench.resize(n, Eigen::Index{6} * kLegs);
   Vector3d moment = Vector3d::Zero();
   for (int k = 0; k < kLegs; ++k) {
     const Frame& nk = s.geometry.transducer[k];
@@ -306,7 +306,7 @@ TEST(Standing, TheNaiveTareOfAnUprightRobotLeavesExactlyTheLegsGravityMoment) {
     const Wrench reading = s.hanging.legs[k].offset + force_at(s.hanging.legs[k].weight * u, r);
     for (int i = 0; i < n; ++i) {
       air.phi(i, k) = 0.1 * i;
-      air.wrench.row(i).segment<6>(6 * k) = reading.transpose();
+      air.wrench.row(i).segment<6>(Eigen::Index{6} * k) = reading.transpose();
     }
     moment += (nk * r).cross(s.hanging.legs[k].weight * Vector3d::UnitZ());
   }
