@@ -87,7 +87,9 @@ struct ScenarioOptions {
   double force_noise = 0.0;   // N
   double torque_noise = 0.0;  // N·m
   bool mounting_errors = true;
-  bool shared_truth = false;  // R̃ = I and one u: the com_only truth
+  bool shared_truth = false;   // R̃ = I and one u: the com_only truth
+  bool rotation_truth = true;  // with shared_truth: R̃ drawn too (the shared_translation truth)
+  bool displacement_truth = true;
   BalanceTarget target = BalanceTarget::chassis;
   double max_tilt = 0.08;  // rad
 };
@@ -114,10 +116,12 @@ Scenario make_scenario(std::uint64_t seed, const ScenarioOptions& o = {}) {
   const double chassis_weight = kRobotWeight - legs_weight;
   const Vector3d shared_u = draw.vector(0.05);
   for (int k = 0; k < kLegs; ++k) {
-    const bool free = o.mounting_errors && !o.shared_truth;
+    const bool free = o.mounting_errors && o.rotation_truth;
     s.truth.rotation.push_back(free ? draw.rotation(0.06) : Matrix3d::Identity());
     s.truth.displacement.push_back(
-        o.shared_truth ? shared_u : (o.mounting_errors ? draw.vector(0.05) : Vector3d::Zero()));
+        o.shared_truth
+            ? shared_u
+            : (o.mounting_errors && o.displacement_truth ? draw.vector(0.05) : Vector3d::Zero()));
   }
   std::vector<Frame> frame(kLegs);  // true transducer frames in C
   for (int k = 0; k < kLegs; ++k) {
@@ -226,12 +230,47 @@ TEST(Standing, TheLiteralTargetRecoversTheMountingOfPosesThatBalanceItsWay) {
 TEST(Standing, TheComOnlyModelRecoversASharedDisplacementInOneLinearSolve) {
   ScenarioOptions o;
   o.shared_truth = true;
+  o.rotation_truth = false;
   const Scenario s = make_scenario(3, o);
   const MountingEstimate e = fit_mounting(
       s.geometry, s.poses, s.hanging, with(MountingModel::com_only, MountingSolver::alternating));
   EXPECT_EQ(e.iterations, 1);
   EXPECT_LT(max_displacement_error(e, s.truth), 1e-10);
   EXPECT_LT(max_rotation_error(e, s.truth), 1e-15);
+}
+
+TEST(Standing, EveryModelRecoversATruthOfItsOwnFormByBothSolvers) {
+  struct Case {
+    MountingModel model;
+    bool shared;
+    bool rotations;
+  };
+  for (const Case c : {Case{MountingModel::shared_translation, true, true},
+                       Case{MountingModel::translations_only, false, false},
+                       Case{MountingModel::com_only, true, false}}) {
+    ScenarioOptions o;
+    o.shared_truth = c.shared;
+    o.rotation_truth = c.rotations;
+    const Scenario s = make_scenario(13, o);
+    for (const MountingSolver solver : {MountingSolver::alternating, MountingSolver::ceres_so3}) {
+      SCOPED_TRACE(std::string(model_label(c.model)) + " " + std::string(solver_label(solver)));
+      const MountingEstimate e =
+          fit_mounting(s.geometry, s.poses, s.hanging, with(c.model, solver));
+      EXPECT_TRUE(e.converged);
+      EXPECT_LT(max_rotation_error(e, s.truth), 1e-8);
+      EXPECT_LT(max_displacement_error(e, s.truth), 1e-8);
+      EXPECT_EQ(e.dof, model_dof(c.model, kLegs));
+      for (int k = 0; k < kLegs; ++k) {  // what the model fixes carries no error
+        if (!c.rotations) {
+          EXPECT_EQ(e.rotation_se[k], Vector3d::Zero());
+        }
+        if (c.shared) {
+          EXPECT_EQ(e.displacement[k], e.displacement[0]);
+          EXPECT_EQ(e.displacement_se[k], e.displacement_se[0]);
+        }
+      }
+    }
+  }
 }
 
 // ---- the solvers agree
@@ -366,6 +405,7 @@ TEST(Standing, TheModelsNestTheirResidualsAndTheBicFollowsItsFormula) {
 TEST(Standing, BicPicksTheComOnlyModelWhenTheTruthIsAShiftedCentreOfMass) {
   ScenarioOptions o;
   o.shared_truth = true;
+  o.rotation_truth = false;
   o.force_noise = 0.2;
   o.torque_noise = 0.02;
   const Scenario s = make_scenario(8, o);
