@@ -80,12 +80,20 @@ MountingEstimate fit_prepared(const BalanceData& data, const MountingOptions& op
                                         std::to_string(poses));
   }
   const auto begin = std::chrono::steady_clock::now();
-  const standing_detail::SolveResult solved =
+  standing_detail::SolveResult solved =
       options.solver == MountingSolver::alternating
           ? standing_detail::solve_alternating(data, options.model, options, start)
           : standing_detail::solve_joint(data, options.model, options, start);
+  double variance = options.force_noise_variance;
+  if (variance < 0.0) {
+    variance = standing_detail::estimate_force_noise_variance(data, solved, dof);
+  }
+  if (variance > 0.0) {
+    standing_detail::correct_errors_in_variables(data, options.model, variance, solved);
+  }
   const auto end = std::chrono::steady_clock::now();
   MountingEstimate estimate;
+  estimate.force_noise_variance = variance;
   estimate.model = options.model;
   estimate.solver = options.solver;
   estimate.target = options.target;
@@ -222,6 +230,9 @@ void validate(const MountingOptions& options) {
   }
   if (!(options.tolerance > 0.0 && options.tolerance < 1.0)) {
     throw core::InputError("mounting.tolerance", "must lie in (0, 1)");
+  }
+  if (!std::isfinite(options.force_noise_variance)) {
+    throw core::InputError("mounting.force_noise_variance", "must be finite");
   }
   if (options.max_iterations < 1) {
     throw core::InputError("mounting.max_iterations", "must be 1 or more");

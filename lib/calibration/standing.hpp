@@ -38,8 +38,11 @@
 // isotropic noise σ_f² per axis), which the least-squares fit lowers by pulling the transducer
 // origins c_k towards C: a bias of order σ_f² / var(force) × |c_k| that does not shrink with the
 // number of poses (the rotations are not affected to first order). With BigANT-like loads and
-// σ_f = 0.3 N it is a few mm, about 1.5 standard errors at 543 poses; the standard errors above
-// describe the scatter, not this bias.
+// σ_f = 0.3 N it is a few mm, about 1.2 standard errors at 543 poses; the standard errors above
+// describe the scatter, not this bias. `force_noise_variance` removes it: the fit then minimises
+// the corrected score Σ_p ‖e_p‖²_K − 2Pκσ_f² Σ_k |c_k|² (whose expectation is the noiseless cost;
+// Newton steps from the plain fit, the Hessian less the term's curvature, which also enters the
+// sandwich). Not in the thesis; off by default.
 //
 // Gauge. A common turn of every transducer about the vertical through C, with the displacements
 // turned along, changes e_p only through the tilts of ĝ_p: on level ground the full model is
@@ -73,6 +76,11 @@ struct MountingOptions {
   double torque_weight = 10.0;  ///< κ
   double tolerance = 1e-10;  ///< alternating: largest parameter change; Ceres: relative cost change
   int max_iterations = 1000;  ///< alternating sweeps, or Ceres iterations
+  /// σ_f², N² per axis, of each transducer's pose force reading, for the errors-in-variables
+  /// correction (above): 0 leaves the thesis' plain least squares; > 0 uses this value; < 0
+  /// estimates it from the plain fit's force residuals (tr Σ_FF / 3K: transducers of equal,
+  /// isotropic noise; attitude noise, which also enters the force residual, inflates it).
+  double force_noise_variance = 0.0;
 };
 
 /// Throws core::InputError("mounting.<field>", ...) for κ not positive and finite, a tolerance
@@ -100,8 +108,9 @@ struct MountingEstimate {
   int iterations = 0;  ///< alternating sweeps or Ceres iterations
   bool converged = false;
   double seconds = 0.0;  ///< wall time of the solve
-  double smallest_singular_value =
-      0.0;  ///< of K^{1/2} J at the solution (the gauge's conditioning)
+  /// Of K^{1/2} J at the solution (the gauge's conditioning).
+  double smallest_singular_value = 0.0;
+  double force_noise_variance = 0.0;  ///< σ_f² the correction used, N² (0: not corrected)
 };
 
 /// Fits the chosen model to `poses` (all of them) given the hanging stage's offsets, weights and

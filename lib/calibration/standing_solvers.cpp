@@ -403,49 +403,141 @@ SolveResult solve_joint(const BalanceData& data, MountingModel model,
   return result;
 }
 
-void standard_errors(const BalanceData& data, MountingEstimate& estimate) {
+namespace {
+
+/// The weighted residuals (6P: [F; √κ T] per pose) and their Jacobian in the free parameters (the
+/// rotation vectors θ_k of R̃_k where the model frees them, then u_k or the shared u).
+struct Linearisation {
+  Eigen::MatrixXd jacobian;
+  std::vector<double> residual;
+};
+
+Linearisation linearise(const BalanceData& data, MountingModel model,
+                        const std::vector<Eigen::Matrix3d>& rotation,
+                        const std::vector<Eigen::Vector3d>& displacement) {
   const int legs = data.legs;
-  const bool shared = shared_displacement(estimate.model);
-  const bool free_rotations = rotations_free(estimate.model);
+  const bool shared = shared_displacement(model);
+  const bool free_rotations = rotations_free(model);
   Blocks blocks(RotationParam::rotation_vector, legs, shared);
   for (int k = 0; k < legs; ++k) {
-    blocks.set_rotation(k, estimate.rotation[static_cast<std::size_t>(k)]);
+    blocks.set_rotation(k, rotation[static_cast<std::size_t>(k)]);
   }
-  blocks.set_displacement(estimate.displacement);
+  blocks.set_displacement(displacement);
   ceres::Problem problem;
   add_poses(problem, data, blocks);
   ceres::Problem::EvaluateOptions evaluate;
-  if (free_rotations) {
-    for (int k = 0; k < legs; ++k) {
+  for (int k = 0; k < legs; ++k) {
+    if (free_rotations) {
       evaluate.parameter_blocks.push_back(blocks.rotation_block(k));
+    } else {  // blocks left out of the Jacobian must be constant
+      problem.SetParameterBlockConstant(blocks.rotation_block(k));
     }
   }
   for (int k = 0; k < (shared ? 1 : legs); ++k) {
     evaluate.parameter_blocks.push_back(blocks.displacement_block(k));
   }
-  for (int k = 0; k < legs; ++k) {  // blocks left out of the Jacobian must be constant
-    if (!free_rotations) {
-      problem.SetParameterBlockConstant(blocks.rotation_block(k));
-    }
-  }
-  std::vector<double> residuals;
+  Linearisation out;
   ceres::CRSMatrix crs;
   double cost = 0.0;
-  problem.Evaluate(evaluate, &cost, &residuals, nullptr, &crs);
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  problem.Evaluate(evaluate, &cost, &out.residual, nullptr, &crs);
+  out.jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
   for (int row = 0; row < crs.num_rows; ++row) {
     for (int i = crs.rows[static_cast<std::size_t>(row)];
          i < crs.rows[static_cast<std::size_t>(row) + 1]; ++i) {
-      jacobian(row, crs.cols[static_cast<std::size_t>(i)]) =
+      out.jacobian(row, crs.cols[static_cast<std::size_t>(i)]) =
           crs.values[static_cast<std::size_t>(i)];
     }
   }
+  return out;
+}
+
+/// β D and β c of the errors-in-variables term 2Pκσ² Σ_k |c_k|² (half its Hessian and gradient),
+/// over the free parameters (zero on the rotations).
+struct NoiseTerm {
+  Eigen::VectorXd diagonal;
+  Eigen::VectorXd gradient;
+};
+
+NoiseTerm noise_term(const BalanceData& data, MountingModel model,
+                     const std::vector<Eigen::Vector3d>& displacement, double variance,
+                     Eigen::Index parameters) {
+  const double beta =
+      2.0 * static_cast<double>(data.poses.size()) * data.sqrt_kappa * data.sqrt_kappa * variance;
+  NoiseTerm term{Eigen::VectorXd::Zero(parameters), Eigen::VectorXd::Zero(parameters)};
+  const bool shared = shared_displacement(model);
+  const Eigen::Index first = parameters - (shared ? 3 : 3 * Eigen::Index{data.legs});
+  for (int k = 0; k < data.legs; ++k) {
+    const Eigen::Index at = first + (shared ? 0 : 3 * Eigen::Index{k});
+    const auto ks = static_cast<std::size_t>(k);
+    term.diagonal.segment<3>(at).array() += beta;
+    term.gradient.segment<3>(at) += beta * (data.nominal_position[ks] + displacement[ks]);
+  }
+  return term;
+}
+
+}  // namespace
+
+double estimate_force_noise_variance(const BalanceData& data, const SolveResult& fit, int dof) {
+  double sum = 0.0;
+  for (std::size_t p = 0; p < data.poses.size(); ++p) {
+    sum += residual_in_c(data, static_cast<Eigen::Index>(p), fit.rotation, fit.displacement)
+               .head<3>()
+               .squaredNorm();
+  }
+  // tr Σ_FF = 3 K σ² for K transducers of equal isotropic noise.
+  return sum / (static_cast<double>(data.poses.size()) - dof / 6.0) / (3.0 * data.legs);
+}
+
+void correct_errors_in_variables(const BalanceData& data, MountingModel model, double variance,
+                                 SolveResult& fit) {
+  const bool free_rotations = rotations_free(model);
+  for (int step = 0; step < 50; ++step) {
+    const Linearisation lin = linearise(data, model, fit.rotation, fit.displacement);
+    const NoiseTerm noise =
+        noise_term(data, model, fit.displacement, variance, lin.jacobian.cols());
+    const Eigen::Map<const Eigen::VectorXd> r(lin.residual.data(),
+                                              static_cast<Eigen::Index>(lin.residual.size()));
+    Eigen::MatrixXd hessian = lin.jacobian.transpose() * lin.jacobian;
+    hessian.diagonal() -= noise.diagonal;
+    const Eigen::VectorXd gradient = lin.jacobian.transpose() * r - noise.gradient;
+    const Eigen::VectorXd delta = -hessian.colPivHouseholderQr().solve(gradient);
+    if (!delta.allFinite()) {
+      throw core::ComputationError("standing: the errors-in-variables correction diverged");
+    }
+    Eigen::Index at = 0;
+    if (free_rotations) {
+      for (auto& rotation : fit.rotation) {
+        rotation =
+            rotation_from_vector(calibration::rotation_vector(rotation) + delta.segment<3>(at));
+        at += 3;
+      }
+    }
+    const bool shared = shared_displacement(model);
+    for (std::size_t k = 0; k < fit.displacement.size(); ++k) {
+      fit.displacement[k] += delta.segment<3>(at + (shared ? 0 : 3 * static_cast<Eigen::Index>(k)));
+    }
+    if (delta.lpNorm<Eigen::Infinity>() < 1e-13) {
+      return;
+    }
+  }
+  throw core::ComputationError(
+      "standing: the errors-in-variables correction did not settle in 50 steps");
+}
+
+void standard_errors(const BalanceData& data, MountingEstimate& estimate) {
+  const int legs = data.legs;
+  const bool shared = shared_displacement(estimate.model);
+  const bool free_rotations = rotations_free(estimate.model);
+  const Linearisation lin =
+      linearise(data, estimate.model, estimate.rotation, estimate.displacement);
+  const Eigen::MatrixXd& jacobian = lin.jacobian;
+  const std::vector<double>& residuals = lin.residual;
   const auto poses = static_cast<Eigen::Index>(data.poses.size());
   const Eigen::Map<const Eigen::MatrixXd> weighted(residuals.data(), 6,
                                                    poses);  // K^{1/2} e_p per column
   const Eigen::Matrix<double, 6, 6> sigma =
       weighted * weighted.transpose() / (static_cast<double>(poses) - estimate.dof / 6.0);
-  const Eigen::MatrixXd hessian = jacobian.transpose() * jacobian;
+  Eigen::MatrixXd hessian = jacobian.transpose() * jacobian;
   Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(hessian.rows(), hessian.cols());
   for (Eigen::Index p = 0; p < poses; ++p) {
     const auto jp = jacobian.middleRows(6 * p, 6);
@@ -453,6 +545,11 @@ void standard_errors(const BalanceData& data, MountingEstimate& estimate) {
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(hessian);
   estimate.smallest_singular_value = std::sqrt(std::max(eigen.eigenvalues().minCoeff(), 0.0));
+  if (estimate.force_noise_variance > 0.0) {  // the corrected objective's curvature
+    hessian.diagonal() -= noise_term(data, estimate.model, estimate.displacement,
+                                     estimate.force_noise_variance, hessian.cols())
+                              .diagonal;
+  }
   const Eigen::MatrixXd bread = hessian.completeOrthogonalDecomposition().pseudoInverse();
   const Eigen::MatrixXd covariance = bread * meat * bread;
   const Eigen::VectorXd se = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();

@@ -71,6 +71,14 @@ struct SolveResult {
 [[nodiscard]] SolveResult solve_joint(const BalanceData& data, MountingModel model,
                                       const MountingOptions& options, const MountingStart& start);
 
+/// σ_f² from the force rows of the residuals (tr Σ_FF / 3K: transducers of equal isotropic noise).
+[[nodiscard]] double estimate_force_noise_variance(const BalanceData& data, const SolveResult& fit,
+                                                   int dof);
+
+/// Newton steps from `fit` to the minimum of Σ_p ‖e_p‖²_K − 2Pκσ² Σ_k |c_k|² (standing.hpp).
+void correct_errors_in_variables(const BalanceData& data, MountingModel model, double variance,
+                                 SolveResult& fit);
+
 /// Fills rotation_se, displacement_se and smallest_singular_value of `estimate` (its rotation and
 /// displacement set) with the sandwich covariance of standing.hpp.
 void standard_errors(const BalanceData& data, MountingEstimate& estimate);

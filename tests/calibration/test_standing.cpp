@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iostream>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -485,6 +486,56 @@ TEST(Standing, TheSandwichStandardErrorsMatchTheScatterOverSeeds) {
   EXPECT_LT(std::abs(mean), 0.2);
 }
 
+TEST(Standing, TheErrorsInVariablesCorrectionRemovesTheForceNoisesAttenuation) {
+  // Force noise well above the torque noise and many poses: the plain fit's displacement errors
+  // are dominated by the attenuation, the corrected fit's by the scatter its SE states.
+  ScenarioOptions o;
+  o.poses = 200;
+  o.force_noise = 0.6;
+  o.torque_noise = 0.01;
+  double plain = 0.0;
+  double corrected = 0.0;
+  double estimated = 0.0;
+  double variance_sum = 0.0;
+  int n = 0;
+  constexpr int kSeeds = 6;
+  for (std::uint64_t seed = 200; seed < 200 + kSeeds; ++seed) {
+    const Scenario s = make_scenario(seed, o);
+    MountingOptions options = with(MountingModel::full, MountingSolver::ceres_so3);
+    const MountingEstimate a = fit_mounting(s.geometry, s.poses, s.hanging, options);
+    options.force_noise_variance = o.force_noise * o.force_noise;
+    const MountingEstimate b = fit_mounting(s.geometry, s.poses, s.hanging, options);
+    options.force_noise_variance = -1.0;
+    const MountingEstimate c = fit_mounting(s.geometry, s.poses, s.hanging, options);
+    variance_sum += c.force_noise_variance;
+    for (int k = 0; k < kLegs; ++k) {
+      for (int i = 0; i < 3; ++i) {
+        const auto z = [&](const MountingEstimate& e) {
+          const double dz =
+              (e.displacement[k](i) - s.truth.displacement[k](i)) / e.displacement_se[k](i);
+          return dz * dz;
+        };
+        plain += z(a);
+        corrected += z(b);
+        estimated += z(c);
+        ++n;
+      }
+    }
+  }
+  plain = std::sqrt(plain / n);
+  corrected = std::sqrt(corrected / n);
+  estimated = std::sqrt(estimated / n);
+  EXPECT_GT(plain, 1.4);
+  EXPECT_GT(corrected, 0.8);
+  EXPECT_LT(corrected, 1.25);
+  EXPECT_GT(estimated, 0.8);
+  EXPECT_LT(estimated, 1.25);
+  EXPECT_NEAR(variance_sum / kSeeds, o.force_noise * o.force_noise,
+              0.05 * o.force_noise * o.force_noise);
+  RecordProperty("z_rms_plain", std::to_string(plain));
+  RecordProperty("z_rms_corrected", std::to_string(corrected));
+}
+
 // ---- bad inputs
 // ----------------------------------------------------------------------------------
 
@@ -524,6 +575,9 @@ TEST(Standing, BadInputsAreRefusedNamingWhere) {
   EXPECT_THROW(validate(bad), core::InputError);
   bad = {};
   bad.max_iterations = 0;
+  EXPECT_THROW(validate(bad), core::InputError);
+  bad = {};
+  bad.force_noise_variance = std::numeric_limits<double>::infinity();
   EXPECT_THROW(validate(bad), core::InputError);
 
   MountingStart start;
