@@ -23,7 +23,10 @@
 // A rotation is parametrised by Cayley parameters (wrench.hpp) in the alternating solver (the
 // thesis': with the rotations fixed the residual is linear in the translations, and with the
 // translations fixed each sweep solves the rotations; repeat until the largest parameter change is
-// below `tolerance`) and by Ceres' quaternion manifold on SO(3) in the joint solver.
+// below `tolerance`) and by Ceres' quaternion manifold on SO(3) in the joint solver. Both reach
+// the same minimum; the sweeps converge linearly, slowly along the gauge below (on 543 poses:
+// ~250 sweeps with tilts of ±0.08 rad, more than 1000 with ±0.02 rad), the joint solve in 4–12
+// Levenberg–Marquardt iterations, 100–300 times faster.
 //
 // Standard errors. The residuals' force and torque components have their own scatter (the K-norm
 // mixes units), and they are correlated: transducer k's force noise enters the torque about C
