@@ -416,7 +416,7 @@ Rows<HangingRow> run_hanging(const Point& point) {
               r.model = model;
               r.sample = static_cast<long long>(i);
               r.phi = record.phi(i, k);
-              r.residual = residual(i, 6 * k + j);
+              r.residual = residual(i, 6 * static_cast<Eigen::Index>(k) + j);
               out.rows.push_back(std::move(r));
             }
           }
