@@ -580,11 +580,13 @@ struct StartsInputs {
   int starts = 20;
   double max_angle_deg = 15.0;
   double max_displacement = 0.73 / 3.0;
+  int max_iterations = 1000;
 };
 
 StartsInputs read_starts(const Point& point) {
-  const Reader r(point, "calib_starts",
-                 keys_with({"solver", "starts", "max_angle_deg", "max_displacement"}));
+  const Reader r(
+      point, "calib_starts",
+      keys_with({"solver", "starts", "max_angle_deg", "max_displacement", "max_iterations"}));
   StartsInputs in;
   in.key = read_shared(r);
   in.solver = r.choice("solver", {"alternating", "ceres_so3"}) == "alternating"
@@ -593,6 +595,7 @@ StartsInputs read_starts(const Point& point) {
   in.starts = static_cast<int>(r.integer("starts", 20, 1, 200));
   in.max_angle_deg = r.number("max_angle_deg", 15.0, core::closed(0.0, 90.0, "deg"));
   in.max_displacement = r.number("max_displacement", 0.73 / 3.0, core::closed(0.0, 1.0, "m"));
+  in.max_iterations = static_cast<int>(r.integer("max_iterations", 1000, 1, 100000));
   return in;
 }
 
@@ -646,6 +649,7 @@ Rows<StartRow> run_starts(const Point& point) {
     const auto c = cached_calibration(in.key);
     cal::MountingOptions options = default_calibration_options(in.key.seed).mounting;
     options.solver = in.solver;
+    options.max_iterations = in.max_iterations;
     const std::vector<cal::MountingEstimate> fits =
         cal::multistart(c->geometry, robot->poses, c->hanging, options, in.starts, in.key.seed,
                         in.max_angle_deg * kDegree, in.max_displacement);

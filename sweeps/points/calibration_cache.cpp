@@ -117,7 +117,7 @@ calibration::CalibrationOptions default_calibration_options(std::uint64_t seed) 
   calibration::CalibrationOptions o;
   o.select_model = false;
   o.mounting.model = calibration::MountingModel::full;
-  o.mounting.solver = calibration::MountingSolver::alternating;
+  o.mounting.solver = calibration::MountingSolver::ceres_so3;
   o.mounting.target = calibration::BalanceTarget::chassis;
   o.seed = seed;
   return o;

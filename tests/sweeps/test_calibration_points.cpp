@@ -146,6 +146,7 @@ TEST(CalibrationPoints, ChecksRefuseBadParametersAtTheValue) {
   expect_refused_at_last_line("calib_models", "poses = 10\nfolds = 11\n");
   expect_refused_at_last_line("calib_starts", "solver = \"newton\"\n");
   expect_refused_at_last_line("calib_starts", "starts = 0\n");
+  expect_refused_at_last_line("calib_starts", "max_iterations = 0\n");
   expect_refused_at_last_line("calib_starts", "max_angle_deg = 91\n");
   expect_refused_at_last_line("calib_starts", "max_displacement = -0.1\n");
   expect_refused_at_last_line("calib_accuracy", "stride = 10\n");
@@ -358,12 +359,12 @@ TEST(CalibrationPoints, NoiselessDataGiveTheTruthBack) {
   const PointResult acc = run("calib_accuracy", std::string(kSmall) + "noise_scale = 0\n");
   ASSERT_EQ(acc.rows.size(), 1U);
   const Cells& row = acc.rows[0];
-  // Bounds far below the noisy robot's errors, loose enough for the RTS smoother's lag bias in
-  // the CoM (hanging.hpp), through which d, the offsets and the weights are fitted.
-  EXPECT_LT(num(a, row, "weight_err_max"), 1e-3);
-  EXPECT_LT(num(a, row, "offset_force_err_max"), 1e-2);
-  EXPECT_LT(num(a, row, "rotation_err_max_deg"), 0.05);
-  EXPECT_LT(num(a, row, "displacement_err_max_mm"), 0.1);
+  // Far below the noisy robot's errors (0.003 N, 0.02 N, 3°, 50 mm on this robot); not 1e-9:
+  // the RTS smoother's lag bias in the CoM (hanging.hpp) reaches d, the offsets and the weights.
+  EXPECT_LT(num(a, row, "weight_err_max"), 1e-4);
+  EXPECT_LT(num(a, row, "offset_force_err_max"), 1e-3);
+  EXPECT_LT(num(a, row, "rotation_err_max_deg"), 0.01);
+  EXPECT_LT(num(a, row, "displacement_err_max_mm"), 0.01);
 }
 
 }  // namespace
