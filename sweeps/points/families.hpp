@@ -45,6 +45,10 @@ namespace slipwalk::sweeps::points {
 /// training-set size curve (residual.cpp).
 [[nodiscard]] std::vector<PointKind> residual_kinds();
 
+/// The in-situ F/T calibration of ch. 4 on the synthetic BigANT: estimates against the truth,
+/// the CoM, the residuals, Table 4.2, the multistart, the accuracy grid (calibration.cpp).
+[[nodiscard]] std::vector<PointKind> calibration_kinds();
+
 /// The hostile-input campaign against the binary itself (hostile_inputs_kind.cpp).
 [[nodiscard]] std::vector<PointKind> hostile_input_kinds();
 
