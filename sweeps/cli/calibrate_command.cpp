@@ -230,6 +230,7 @@ struct SynthCommand {
     const cal::StandingPoses poses = cal::synthetic_poses(truth, options);
 
     std::vector<std::unique_ptr<core::AtomicFile>> files;
+    files.reserve(targets.size());
     for (const std::filesystem::path& t : targets) {
       files.push_back(std::make_unique<core::AtomicFile>(t));
     }
