@@ -294,6 +294,8 @@ TEST(CliCalibrateSynth, ItsFilesCalibrateToTheTruthsWeights) {
   EXPECT_EQ(cal::read_hanging(s / "hanging.csv", g).size(), 4U);
   EXPECT_EQ(cal::read_poses(s / "poses.csv", g).poses(), 80);
 
+  // The weights come from the hanging stage; the one-translation model keeps the standing stage
+  // quick (the selection's fits are the standing stage's tests).
   const CommandResult r =
       run_slipwalk({"calibrate", "--geometry", (s / "geometry.toml").string(), "--hanging",
                     (s / "hanging.csv").string(), "--poses", (s / "poses.csv").string(), "--out",
