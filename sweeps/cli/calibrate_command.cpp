@@ -133,9 +133,10 @@ struct CalibrateCommand {
     const Eigen::Index needed = min_poses(*chosen, geometry.size());
     const Eigen::Index p = poses.poses();
     if (p < needed) {
-      throw InputError(poses_file, std::to_string(p) + " poses; the " + std::string(chosen->name) +
-                                       " model of " + std::to_string(geometry.size()) +
-                                       " transducers needs at least " + std::to_string(needed));
+      throw InputError(poses.source, std::to_string(p) + " poses; the " +
+                                         std::string(chosen->name) + " model of " +
+                                         std::to_string(geometry.size()) +
+                                         " transducers needs at least " + std::to_string(needed));
     }
     if (options.select_model) {
       const Eigen::Index training = p - (p + folds - 1) / folds;

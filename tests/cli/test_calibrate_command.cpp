@@ -183,7 +183,7 @@ TEST(CliCalibrate, TooFewPosesOrABadQuaternionAreRefused) {
   const std::string file = (in.dir / "p.csv").string();
   // Two poses: the full model of two transducers (12 DOF) needs three.
   write_text(in.dir / "p.csv", poses_text(2));
-  expect_refused(in, {}, file + ": 2 poses; the full model of 2 transducers needs at least 3");
+  expect_refused(in, {}, file + ":1: 2 poses; the full model of 2 transducers needs at least 3");
   // Three poses fit the full model alone, but not five folds of it.
   write_text(in.dir / "p.csv", poses_text(3));
   expect_refused(in, {}, "--folds");
@@ -210,7 +210,7 @@ TEST(CliCalibrate, EachModelsPoseCountIsItsDofOverSixPlusOne) {
     if (needed > 1) {
       write_text(in.dir / "p.csv", poses_text(needed - 1));
       expect_refused(in, {"--model", label},
-                     (in.dir / "p.csv").string() + ": " + std::to_string(needed - 1) + " poses");
+                     (in.dir / "p.csv").string() + ":1: " + std::to_string(needed - 1) + " poses");
     }
     write_text(in.dir / "p.csv", poses_text(needed));
     const CommandResult r = run_slipwalk(in.args({"--model", label}));
