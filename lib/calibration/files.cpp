@@ -26,15 +26,18 @@
 //   position = [0.35, 0.2, 0.04]    # m, N_k's origin in the body frame (|p| <= 100)
 //   rotation = [0.0, 0.0, 3.14159]  # rad, the rotation vector of N_k's axes in B (|θ| <= π)
 //
-// params.json (calibration_json; `slipwalk calibrate` adds the command, its inputs, wall time and
-// provenance): legs, robot_weight; hanging: options and per leg offset [fx fy fz tx ty tz],
-// offset_se, weight, weight_se, com {harmonics, coefficients 3 × (1 + 2H) by rows x, y, z:
-// c₀, a₁, b₁, ...}, com_fit_rms, and each opposite pair's intermediate results; mounting: the
-// model, solver and target, per leg rotation (rotation vector of R̃_k, rad), rotation_matrix
-// (row-major), displacement u_k (m) and their standard errors, rss, dof, poses, iterations,
-// converged, seconds, smallest_singular_value; models (Table 4.2: model, dof, rss, cv_mse, bic);
-// seconds_hanging, seconds_standing. The CoM samples themselves are not written (90,000 per leg in
-// the thesis).
+// params.json (calibration_json; `slipwalk calibrate` adds the command, its inputs and options,
+// the wall time and provenance):
+//   legs[k]: leg; offset [fx fy fz tx ty tz] (N, N·m) and offset_se; weight and weight_se (N);
+//            com {harmonics H, coefficients: rows x, y, z of c₀, a₁, b₁, ... (m, transducer
+//            frame)}, com_samples (how many), com_fit_rms (m); pairs (each opposite pair's down,
+//            up, axis, f_minus, d, s_plus, s_minus, weight, offset and their SEs); rotation (the
+//            rotation vector of R̃_k, rad), rotation_matrix (rows), rotation_se; displacement u_k
+//            (m) and displacement_se
+//   robot_weight; hanging {model, com, variances, harmonics, max_phi_mismatch}; mounting {model,
+//   solver, target, chassis_weight, rss, poses, dof, iterations, converged, seconds,
+//   smallest_singular_value}; models (Table 4.2: model, dof, rss, cv_mse, bic); seconds_hanging,
+//   seconds_standing. The CoM samples themselves are not written (90,000 per leg in the thesis).
 //
 // truth.json (truth_json): the options, the geometry, and per leg the true offset, weight,
 // mounting rotation (rotation vector, rad), translation p̃_k (m), displacement u_k (m), and the CoM
