@@ -210,7 +210,7 @@ TEST(CalibrationFiles, EachBadCellOrColumnIsRefusedAtItsLineAndColumn) {
   EXPECT_EQ(place(unknown), "h.csv:3:1");
   // An orientation that comes back after another.
   const std::string split =
-      text + text.substr(text.find('\n') + 1, text.find("\n", line3) + 1 - text.find('\n') - 1);
+      text + text.substr(text.find('\n') + 1, text.find('\n', line3) + 1 - text.find('\n') - 1);
   EXPECT_EQ(place(split), "h.csv:10:1");
   // A row of the wrong length; no header; no rows.
   EXPECT_EQ(place(text + "+x,1,2\n"), "h.csv:10");
