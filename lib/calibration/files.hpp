@@ -5,7 +5,8 @@
 //
 // CSV (one header line, then one row per sample or pose; '#' starts a comment to the end of its
 // line; blank lines skipped; columns in any order; unknown columns ignored):
-//   hanging:  orientation, then per leg L of the geometry: phi_L, fx_L, fy_L, fz_L, tx_L, ty_L, tz_L
+//   hanging:  orientation, then per leg L of the geometry: phi_L, fx_L, fy_L, fz_L, tx_L, ty_L,
+//   tz_L
 //             orientation ∈ {+x, −x, +y, −y, +z, −z}: the body axis along gravity; the rows of one
 //             orientation together, in sample order; one file may hold several orientations and
 //             several files may be given.
@@ -16,10 +17,11 @@
 // file larger than kMaxCalibrationFileBytes) are core::InputError at file:line:col.
 #include <cstddef>
 #include <filesystem>
-#include <ostream>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "calibration/calibrate.hpp"
 #include "calibration/model.hpp"
@@ -30,9 +32,34 @@ namespace slipwalk::calibration {
 /// The largest recording read (the thesis' full hanging set, 4 × 90,000 rows, is ≈ 150 MB).
 inline constexpr std::size_t kMaxCalibrationFileBytes = std::size_t{512} << 20;
 
+/// The columns of each format, in the order the writers write them (one definition for reader
+/// and writer): per leg L of the geometry phi_L, fx_L, fy_L, fz_L, tx_L, ty_L, tz_L.
+[[nodiscard]] std::vector<std::string> hanging_columns(const Geometry& geometry);
+[[nodiscard]] std::vector<std::string> pose_columns(const Geometry& geometry);
+
+/// The readers on text (`source` names it in errors): what read_hanging, read_poses and
+/// read_geometry do after reading the file (the fuzz targets call these).
+[[nodiscard]] std::vector<HangingRecord> parse_hanging(std::string_view text,
+                                                       const std::string& source,
+                                                       const Geometry& geometry);
+[[nodiscard]] StandingPoses parse_poses(std::string_view text, const std::string& source,
+                                        const Geometry& geometry);
+[[nodiscard]] Geometry parse_geometry(std::string_view text, const std::string& source);
+
+/// The checks of §4.3.1's pairing, on records gathered from several files, before calibrating
+/// (core::InputError at the record's or the sample's file:line): an orientation given twice; a
+/// record without its opposite (except −z, the naive tare's upright record, which may stand
+/// alone); fewer than two complete opposite pairs (they are then of different axes, so not
+/// parallel); paired records (every record of a complete pair, across pairs too) that differ in
+/// sample count or whose shaft angles differ by more than `max_phi_mismatch` turns at a sample;
+/// fewer than `min_samples` samples in a paired record.
+void check_hanging_pairs(const std::vector<HangingRecord>& records, double max_phi_mismatch,
+                         Eigen::Index min_samples);
+
 [[nodiscard]] std::vector<HangingRecord> read_hanging(const std::filesystem::path& path,
                                                       const Geometry& geometry);
-void write_hanging(std::ostream& out, const std::vector<HangingRecord>& records, const Geometry& geometry);
+void write_hanging(std::ostream& out, const std::vector<HangingRecord>& records,
+                   const Geometry& geometry);
 
 [[nodiscard]] StandingPoses read_poses(const std::filesystem::path& path, const Geometry& geometry);
 void write_poses(std::ostream& out, const StandingPoses& poses, const Geometry& geometry);

@@ -13,5 +13,6 @@ void add_run_command(CLI::App& app);        ///< run SCENE.toml --out FILE   (ru
 void add_kinds_command(CLI::App& app);      ///< kinds [KIND...] [--json]   (kinds_command.cpp)
 void add_plan_command(CLI::App& app);       ///< plan PLAN.toml --out FILE  (plan_command.cpp)
 void add_residual_command(CLI::App& app);   ///< residual fit --trials ...  (residual_command.cpp)
+void add_calibrate_command(CLI::App& app);  ///< calibrate [synth] ...      (calibrate_command.cpp)
 
 }  // namespace slipwalk::cli

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   slipwalk::cli::add_run_command(app);
   slipwalk::cli::add_plan_command(app);
   slipwalk::cli::add_residual_command(app);
+  slipwalk::cli::add_calibrate_command(app);
   slipwalk::cli::add_kinds_command(app);
   // An interrupted command leaves no temporary behind; stale ones of killed runs are noted.
   slipwalk::core::install_signal_cleanup();

@@ -48,6 +48,8 @@ Outcome spring_support(std::string_view bytes);  ///< contact::spring_support on
 Outcome coulomb(std::string_view bytes);         ///< friction::solve_coulomb on a decoded frame
 Outcome plan_file(std::string_view bytes);       ///< planning::parse_plan_file, to_json
 Outcome trial(std::string_view bytes);           ///< residual::parse_trials, predict
+Outcome calibration_hanging(std::string_view bytes);  ///< calibration::parse_hanging, pairing
+Outcome calibration_poses(std::string_view bytes);    ///< calibration::parse_poses
 
 }  // namespace slipwalk::fuzz
 

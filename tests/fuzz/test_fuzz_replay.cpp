@@ -28,15 +28,17 @@ struct Target {
   int mutations;  ///< seeded mutations replayed (a spec expands and checks every point: fewer)
 };
 
-const std::array<Target, 9> kTargets = {{{"scene", &scene, 2000},
-                                         {"spec", &spec, 400},
-                                         {"frame_json", &frame_json, 2000},
-                                         {"frame_batch", &frame_batch, 2000},
-                                         {"residual", &residual, 2000},
-                                         {"spring_support", &spring_support, 2000},
-                                         {"coulomb", &coulomb, 2000},
-                                         {"plan_file", &plan_file, 1000},
-                                         {"trial", &trial, 1000}}};
+const std::array<Target, 11> kTargets = {{{"scene", &scene, 2000},
+                                          {"spec", &spec, 400},
+                                          {"frame_json", &frame_json, 2000},
+                                          {"frame_batch", &frame_batch, 2000},
+                                          {"residual", &residual, 2000},
+                                          {"spring_support", &spring_support, 2000},
+                                          {"coulomb", &coulomb, 2000},
+                                          {"plan_file", &plan_file, 1000},
+                                          {"trial", &trial, 1000},
+                                          {"calibration_hanging", &calibration_hanging, 1000},
+                                          {"calibration_poses", &calibration_poses, 1000}}};
 
 /// GoogleTest prints a parameter by its name.
 [[maybe_unused]] void PrintTo(const Target& t, std::ostream* os) { *os << t.name; }
