@@ -88,8 +88,9 @@ MountingEstimate fit_prepared(const BalanceData& data, const MountingOptions& op
   if (variance < 0.0) {
     variance = standing_detail::estimate_force_noise_variance(data, solved, dof);
   }
-  if (variance > 0.0) {
-    standing_detail::correct_errors_in_variables(data, options.model, variance, solved);
+  if (variance > 0.0 &&
+      !standing_detail::correct_errors_in_variables(data, options.model, variance, solved)) {
+    variance = 0.0;  // the correction is undefined here: the plain fit stands, and says so
   }
   const auto end = std::chrono::steady_clock::now();
   MountingEstimate estimate;

@@ -488,9 +488,10 @@ double estimate_force_noise_variance(const BalanceData& data, const SolveResult&
   return sum / (static_cast<double>(data.poses.size()) - dof / 6.0) / (3.0 * data.legs);
 }
 
-void correct_errors_in_variables(const BalanceData& data, MountingModel model, double variance,
+bool correct_errors_in_variables(const BalanceData& data, MountingModel model, double variance,
                                  SolveResult& fit) {
   const bool free_rotations = rotations_free(model);
+  const SolveResult plain = fit;
   for (int step = 0; step < 50; ++step) {
     const Linearisation lin = linearise(data, model, fit.rotation, fit.displacement);
     const NoiseTerm noise =
@@ -500,9 +501,19 @@ void correct_errors_in_variables(const BalanceData& data, MountingModel model, d
     Eigen::MatrixXd hessian = lin.jacobian.transpose() * lin.jacobian;
     hessian.diagonal() -= noise.diagonal;
     const Eigen::VectorXd gradient = lin.jacobian.transpose() * r - noise.gradient;
-    const Eigen::VectorXd delta = -hessian.colPivHouseholderQr().solve(gradient);
+    // The corrected score has a minimum only where its Hessian is positive definite: a noise
+    // variance that is large against the forces' spread across poses (σ_f of ~1 N on BigANT)
+    // makes it fall without bound along the weakly determined directions. There the correction
+    // is undefined and the plain fit stands.
+    const Eigen::LLT<Eigen::MatrixXd> llt(hessian);
+    if (llt.info() != Eigen::Success) {
+      fit = plain;
+      return false;
+    }
+    const Eigen::VectorXd delta = -llt.solve(gradient);
     if (!delta.allFinite()) {
-      throw core::ComputationError("standing: the errors-in-variables correction diverged");
+      fit = plain;
+      return false;
     }
     Eigen::Index at = 0;
     if (free_rotations) {
@@ -516,12 +527,13 @@ void correct_errors_in_variables(const BalanceData& data, MountingModel model, d
     for (std::size_t k = 0; k < fit.displacement.size(); ++k) {
       fit.displacement[k] += delta.segment<3>(at + (shared ? 0 : 3 * static_cast<Eigen::Index>(k)));
     }
-    if (delta.lpNorm<Eigen::Infinity>() < 1e-13) {
-      return;
+    // Parameters are metres and radians of order 0.01–1: 1e-12 is round-off of the solve.
+    if (delta.lpNorm<Eigen::Infinity>() < 1e-12) {
+      return true;
     }
   }
-  throw core::ComputationError(
-      "standing: the errors-in-variables correction did not settle in 50 steps");
+  fit = plain;
+  return false;
 }
 
 void standard_errors(const BalanceData& data, MountingEstimate& estimate) {

@@ -76,8 +76,10 @@ struct SolveResult {
                                                    int dof);
 
 /// Newton steps from `fit` to the minimum of Σ_p ‖e_p‖²_K − 2Pκσ² Σ_k |c_k|² (standing.hpp).
-void correct_errors_in_variables(const BalanceData& data, MountingModel model, double variance,
-                                 SolveResult& fit);
+/// False, with `fit` unchanged, where that score has no minimum (its Hessian is not positive
+/// definite) or the steps do not settle in 50.
+[[nodiscard]] bool correct_errors_in_variables(const BalanceData& data, MountingModel model,
+                                               double variance, SolveResult& fit);
 
 /// Fills rotation_se, displacement_se and smallest_singular_value of `estimate` (its rotation and
 /// displacement set) with the sandwich covariance of standing.hpp.

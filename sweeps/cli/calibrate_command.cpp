@@ -1,5 +1,6 @@
 // slipwalk calibrate --geometry G.toml --hanging H.csv [H2.csv ...] --poses P.csv --out params.json
-//   [--model select|full|...] [--solver alternating|ceres] [--target chassis|thesis]
+//   [--model select|full|...] [--solver ceres|alternating] [--errors-in-variables estimate|off]
+//   [--target chassis|thesis]
 //   [--com smoother|pointwise] [--harmonics H] [--folds F] [--seed S]:
 // the in-situ F/T calibration of thesis ch. 4 (lib/calibration/calibrate.hpp) from the hanging
 // records and the standing poses. Every file is read and checked whole first — the columns, the
@@ -81,7 +82,8 @@ struct CalibrateCommand {
   std::string poses_file;
   std::string out;
   std::string model = "select";
-  std::string solver = "alternating";
+  std::string solver = "ceres";
+  std::string errors_in_variables = "estimate";
   std::string target = "chassis";
   std::string com = "smoother";
   int harmonics = cal::HangingOptions{}.harmonics;
@@ -111,6 +113,9 @@ struct CalibrateCommand {
         solver == "ceres" ? cal::MountingSolver::ceres_so3 : cal::MountingSolver::alternating;
     options.mounting.target =
         target == "thesis" ? cal::BalanceTarget::thesis_literal : cal::BalanceTarget::chassis;
+    if (errors_in_variables == "off") {
+      options.mounting.force_noise_variance = 0.0;
+    }
     options.select_model = model == "select";
     const ModelChoice* chosen = &kModels.front();  // select: the full model needs the most poses
     for (const ModelChoice& m : kModels) {
@@ -159,9 +164,10 @@ struct CalibrateCommand {
                       {"poses", poses_file},
                       {"hanging_records", records.size()},
                       {"poses_count", p}};
-    json["options"] = {{"model", model}, {"solver", solver},       {"target", target},
-                       {"com", com},     {"harmonics", harmonics}, {"folds", folds},
-                       {"seed", seed}};
+    json["options"] = {
+        {"model", model},   {"solver", solver}, {"errors_in_variables", errors_in_variables},
+        {"target", target}, {"com", com},       {"harmonics", harmonics},
+        {"folds", folds},   {"seed", seed}};
     json["wall_s"] = wall_s;
     json["provenance"] = core::build_provenance();
     core::write_file_atomically(out, json.dump(1) + "\n");
@@ -291,8 +297,13 @@ void add_calibrate_command(CLI::App& app) {
                     ->check(CLI::IsMember({"select", "full", "shared_translation",
                                            "translations_only", "com_only"})));
   own.push_back(sub->add_option("--solver", cmd->solver,
-                                "alternating (the thesis', default) or ceres (joint, on SO(3))")
+                                "ceres (joint, on SO(3); default) or alternating (the thesis')")
                     ->check(CLI::IsMember({"alternating", "ceres"})));
+  own.push_back(sub->add_option("--errors-in-variables", cmd->errors_in_variables,
+                                "estimate: correct the force noise's bias on the displacements "
+                                "with σ_f² estimated (default); off: the thesis' plain least "
+                                "squares (lib/calibration/standing.hpp)")
+                    ->check(CLI::IsMember({"estimate", "off"})));
   own.push_back(sub->add_option("--target", cmd->target,
                                 "chassis: the exact balance of the chassis (default); thesis: "
                                 "eq. 4.8 as printed")

@@ -146,9 +146,16 @@ TEST(Calibrate, GroundContactWrenchesOfAStandingPoseSumToTheRobotsWeight) {
   }
 }
 
-TEST(Calibrate, SelectsTheFullModelWhenTheTransducersHaveRotationAndTranslationErrors) {
+// BIC = P ln(RSS/P) + DOF ln P charges the full model's 15 extra parameters 15 ln 543 ≈ 94 over
+// six rotations and one translation: it is chosen when the transducers' own translation errors
+// move the residual by more than that, as on the thesis' robot (Table 4.2: RSS 29 % below). With
+// 2 cm errors they do (RSS 20 % below); with the default robot's 3 mm ones (3 % below) BIC picks
+// the shared translation while cross-validation still prefers the full model (the study reports
+// both).
+TEST(Calibrate, SelectsTheFullModelWhenTheTransducersTranslationErrorsStandOutOfTheNoise) {
   SynthOptions synth;
   synth.samples_per_cycle = 200;
+  synth.mounting_translation = 0.02;
   const Synthetic s = make(synth);
   const Calibration c = calibrate(s.truth.geometry, s.hanging, s.poses, CalibrationOptions{});
   ASSERT_EQ(c.models.size(), 4U);
