@@ -59,6 +59,14 @@ const std::map<std::string, std::string>& bases() {
       {"residual_training",
        "frequency = 2.4\ncycles = 1\nskip_cycles = 0\nsettle = 0.0\ntrain_trials = 1\ndraws = "
        "1\nvalidate_dphi_pi = \"1.8\"\n"},
+      {"calib_parameters", "poses = 60\nsamples_per_cycle = 90\ncycles = 2\n"},
+      {"calib_com", "poses = 60\nsamples_per_cycle = 90\ncycles = 2\n"},
+      {"calib_hanging_residuals", "poses = 60\nsamples_per_cycle = 90\ncycles = 2\n"},
+      {"calib_pose_residuals", "poses = 60\nsamples_per_cycle = 90\ncycles = 2\n"},
+      {"calib_models", "poses = 60\nsamples_per_cycle = 90\ncycles = 2\n"},
+      {"calib_starts",
+       "poses = 60\nsamples_per_cycle = 90\ncycles = 2\nstarts = 1\nmax_iterations = 5\n"},
+      {"calib_accuracy", "poses = 60\nsamples_per_cycle = 90\ncycles = 2\n"},
   };
   return all;
 }
