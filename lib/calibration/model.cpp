@@ -19,8 +19,8 @@ bool well_formed_name(const std::string& name) {
     return false;
   }
   for (const char c : name) {
-    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                    c == '_';
+    const bool ok =
+        (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
     if (!ok) {
       return false;
     }
@@ -35,9 +35,9 @@ void validate(const Geometry& geometry) {
     throw core::InputError("geometry.legs", "names no transducer");
   }
   if (geometry.transducer.size() != geometry.legs.size()) {
-    throw core::InputError("geometry.transducer", "has " + std::to_string(geometry.transducer.size()) +
-                                                      " frames for " +
-                                                      std::to_string(geometry.legs.size()) + " legs");
+    throw core::InputError("geometry.transducer",
+                           "has " + std::to_string(geometry.transducer.size()) + " frames for " +
+                               std::to_string(geometry.legs.size()) + " legs");
   }
   std::set<std::string> seen;
   for (std::size_t k = 0; k < geometry.legs.size(); ++k) {
@@ -67,7 +67,9 @@ void validate(const Geometry& geometry) {
   }
 }
 
-std::string_view axis_label(BodyAxis axis) { return kAxisLabels.at(static_cast<std::size_t>(axis)); }
+std::string_view axis_label(BodyAxis axis) {
+  return kAxisLabels.at(static_cast<std::size_t>(axis));
+}
 
 std::optional<BodyAxis> parse_axis(std::string_view label) {
   for (std::size_t i = 0; i < kAxisLabels.size(); ++i) {
@@ -92,14 +94,15 @@ BodyAxis opposite(BodyAxis axis) {
 
 Eigen::Vector3d PeriodicFit::operator()(double phi) const {
   Eigen::Vector3d value = coefficients.col(0);
-  for (int h = 1; h <= harmonics(); ++h) {
-    const double a = 2.0 * std::numbers::pi * h * phi;
+  for (Eigen::Index h = 1; h <= harmonics(); ++h) {
+    const double a = 2.0 * std::numbers::pi * static_cast<double>(h) * phi;
     value += coefficients.col(2 * h - 1) * std::cos(a) + coefficients.col(2 * h) * std::sin(a);
   }
   return value;
 }
 
-PeriodicFit fit_periodic(const Eigen::VectorXd& phi, const Eigen::Matrix3Xd& values, int harmonics) {
+PeriodicFit fit_periodic(const Eigen::VectorXd& phi, const Eigen::Matrix3Xd& values,
+                         int harmonics) {
   if (harmonics < 0) {
     throw core::InputError("harmonics", "must be 0 or more");
   }
@@ -112,8 +115,8 @@ PeriodicFit fit_periodic(const Eigen::VectorXd& phi, const Eigen::Matrix3Xd& val
   Eigen::MatrixXd basis(phi.size(), columns);
   for (Eigen::Index i = 0; i < phi.size(); ++i) {
     basis(i, 0) = 1.0;
-    for (int h = 1; h <= harmonics; ++h) {
-      const double a = 2.0 * std::numbers::pi * h * phi(i);
+    for (Eigen::Index h = 1; h <= harmonics; ++h) {
+      const double a = 2.0 * std::numbers::pi * static_cast<double>(h) * phi(i);
       basis(i, 2 * h - 1) = std::cos(a);
       basis(i, 2 * h) = std::sin(a);
     }

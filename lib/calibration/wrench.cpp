@@ -49,9 +49,11 @@ Eigen::Vector3d cayley_inverse(const Eigen::Matrix3d& R) {
   }
   // 1 + trace R = 2 (1 + cos θ): zero at θ = π, where I + R is singular.
   if (1.0 + R.trace() < 2.0 * (1.0 - std::cos(1e-6))) {
-    throw core::InputError("rotation", "turns by π (or within 1e-6 rad of it): no Cayley parameters");
+    throw core::InputError("rotation",
+                           "turns by π (or within 1e-6 rad of it): no Cayley parameters");
   }
-  const Eigen::Matrix3d Q = (I + R).transpose().partialPivLu().solve((I - R).transpose()).transpose();
+  const Eigen::Matrix3d Q =
+      (I + R).transpose().partialPivLu().solve((I - R).transpose()).transpose();
   // Q is skew up to round-off; read q from its antisymmetric part.
   return 0.5 * Eigen::Vector3d(Q(2, 1) - Q(1, 2), Q(0, 2) - Q(2, 0), Q(1, 0) - Q(0, 1));
 }
