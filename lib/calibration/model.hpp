@@ -10,8 +10,8 @@
 //
 // The sensing model (eq. 4.1): transducer k reads w_m = w_a + w_o + n, where w_a is the wrench the
 // leg (everything below the transducer) applies to the chassis, at ft_k's origin in ft_k's axes,
-// w_o a constant offset and n noise. Hanging, w_a is the leg's gravity m_k g acting at its centre of
-// mass r_k(φ) (ft_k frame, a function of the leg's shaft angle φ through its four-bar, §4.1.1):
+// w_o a constant offset and n noise. Hanging, w_a is the leg's gravity m_k g acting at its centre
+// of mass r_k(φ) (ft_k frame, a function of the leg's shaft angle φ through its four-bar, §4.1.1):
 // w_a = [m_k g u; r_k(φ) × m_k g u], u the unit gravity direction in ft_k. Standing, w_a adds the
 // ground contact wrench of the foot.
 //
@@ -35,7 +35,8 @@ namespace slipwalk::calibration {
 
 /// What the design files and a scale give (§4.2.2 step 1, §4.1.1), known before calibrating.
 struct Geometry {
-  std::vector<std::string> legs;  ///< (K) leg names, unique, [A-Za-z0-9_]+ (BigANT: HL ML FL HR MR FR)
+  std::vector<std::string>
+      legs;  ///< (K) leg names, unique, [A-Za-z0-9_]+ (BigANT: HL ML FL HR MR FR)
   std::vector<Frame> transducer;  ///< (K) N_k: transducer k's nominal frame in B (m)
   double robot_weight = 0.0;      ///< G_robot, N: the whole robot, legs included (> 0)
 
@@ -60,8 +61,9 @@ enum class BodyAxis { plus_x, minus_x, plus_y, minus_y, plus_z, minus_z };
 /// feet in the air, from which the naive tare of §4.1.2.1 takes its bias, is `down` = −z.
 struct HangingRecord {
   BodyAxis down = BodyAxis::minus_z;
-  Eigen::MatrixXd phi;     ///< (n × K) shaft angles, turns, as recorded (not wrapped)
-  Eigen::MatrixXd wrench;  ///< (n × 6K) readings; leg k's fx fy fz (N) τx τy τz (N·m) in columns 6k..6k+5
+  Eigen::MatrixXd phi;  ///< (n × K) shaft angles, turns, as recorded (not wrapped)
+  Eigen::MatrixXd
+      wrench;  ///< (n × 6K) readings; leg k's fx fy fz (N) τx τy τz (N·m) in columns 6k..6k+5
   std::vector<std::string> rows;  ///< (n, or empty) "file:line" of each sample's row
   std::string source;             ///< where it came from ("hanging.csv:2" or a label)
 
@@ -71,10 +73,10 @@ struct HangingRecord {
 /// The standing experiment (§4.1.2.1, §4.3.2): the robot at rest on the ground in P poses, each
 /// the median of a settled window; the attitude from motion capture.
 struct StandingPoses {
-  Eigen::MatrixXd phi;                     ///< (P × K) turns
-  Eigen::MatrixXd wrench;                  ///< (P × 6K) as HangingRecord
-  std::vector<Eigen::Matrix3d> attitude;   ///< (P) R^W_C: the body's axes in W
-  std::vector<std::string> rows;           ///< (P, or empty) "file:line" of each pose's row
+  Eigen::MatrixXd phi;                    ///< (P × K) turns
+  Eigen::MatrixXd wrench;                 ///< (P × 6K) as HangingRecord
+  std::vector<Eigen::Matrix3d> attitude;  ///< (P) R^W_C: the body's axes in W
+  std::vector<std::string> rows;          ///< (P, or empty) "file:line" of each pose's row
   std::string source;
 
   [[nodiscard]] Eigen::Index poses() const { return phi.rows(); }
@@ -83,7 +85,8 @@ struct StandingPoses {
 /// An R³-valued periodic function of the shaft angle (period one turn):
 /// c₀ + Σ_{h=1..H} (a_h cos 2πhφ + b_h sin 2πhφ).
 struct PeriodicFit {
-  Eigen::Matrix3Xd coefficients = Eigen::Matrix3Xd::Zero(3, 1);  ///< (3 × (1 + 2H)): c₀, a₁, b₁, a₂, ...
+  Eigen::Matrix3Xd coefficients =
+      Eigen::Matrix3Xd::Zero(3, 1);  ///< (3 × (1 + 2H)): c₀, a₁, b₁, a₂, ...
 
   [[nodiscard]] int harmonics() const { return static_cast<int>((coefficients.cols() - 1) / 2); }
   [[nodiscard]] Eigen::Vector3d operator()(double phi) const;
