@@ -13,6 +13,7 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "sweeps/engine/once_cache.hpp"
 #include "sweeps/points/calibration.hpp"
 
 namespace slipwalk::sweeps::points {
@@ -26,65 +27,9 @@ std::string robot_label(const SynthKey& key) {
          std::to_string(key.cycles) + " cycles)";
 }
 
-/// Values computed once per key; a failed computation stores its error (a logic_error as it is,
-/// anything else as a ComputationError naming the robot).
-template <class Value>
-class OnceCache {
- public:
-  using Pointer = std::shared_ptr<const Value>;
-
-  template <class Make>
-  Pointer get(const SynthKey& key, Make&& make) {
-    std::promise<Pointer> promise;
-    std::shared_future<Pointer> future;
-    bool mine = false;
-    {
-      const std::lock_guard lock(mutex_);
-      const auto it = entries_.find(key);
-      if (it != entries_.end()) {
-        future = it->second;
-      } else {
-        future = promise.get_future().share();
-        entries_.emplace(key, future);
-        ++computations_;
-        mine = true;
-      }
-    }
-    if (mine) {
-      try {
-        promise.set_value(std::make_shared<const Value>(make()));
-      } catch (const std::logic_error&) {
-        promise.set_exception(std::current_exception());  // a bug (or a stage not built): as is
-      } catch (const std::exception& e) {
-        const std::string what = e.what();
-        const std::string label = robot_label(key);
-        promise.set_exception(std::make_exception_ptr(core::ComputationError(
-            what.find(label) == std::string::npos ? label + ": " + what : what)));
-      }
-    }
-    return future.get();
-  }
-
-  [[nodiscard]] std::size_t computations() {
-    const std::lock_guard lock(mutex_);
-    return computations_;
-  }
-
-  void clear() {
-    const std::lock_guard lock(mutex_);
-    entries_.clear();
-    computations_ = 0;
-  }
-
- private:
-  std::mutex mutex_;
-  std::map<SynthKey, std::shared_future<Pointer>> entries_;
-  std::size_t computations_ = 0;
-};
-
 struct Cache {
-  OnceCache<SyntheticRobot> robots;
-  OnceCache<calibration::Calibration> calibrations;
+  engine::OnceCache<SynthKey, SyntheticRobot> robots;
+  engine::OnceCache<SynthKey, calibration::Calibration> calibrations;
 };
 
 Cache& cache() {
@@ -124,15 +69,19 @@ calibration::CalibrationOptions default_calibration_options(std::uint64_t seed) 
 }
 
 std::shared_ptr<const SyntheticRobot> cached_robot(const SynthKey& key) {
-  return cache().robots.get(key, [&] { return make_synthetic_robot(key); });
+  return cache().robots.get(
+      key, [&] { return make_synthetic_robot(key); }, robot_label);
 }
 
 std::shared_ptr<const calibration::Calibration> cached_calibration(const SynthKey& key) {
-  return cache().calibrations.get(key, [&] {
-    const std::shared_ptr<const SyntheticRobot> robot = cached_robot(key);
-    return calibration::calibrate(robot->truth.geometry, robot->hanging, robot->poses,
-                                  default_calibration_options(key.seed));
-  });
+  return cache().calibrations.get(
+      key,
+      [&] {
+        const std::shared_ptr<const SyntheticRobot> robot = cached_robot(key);
+        return calibration::calibrate(robot->truth.geometry, robot->hanging, robot->poses,
+                                      default_calibration_options(key.seed));
+      },
+      robot_label);
 }
 
 std::size_t calibration_cache_computations() {

@@ -63,6 +63,7 @@
 #include "residual/template.hpp"
 #include "residual/trial.hpp"
 #include "robots/robots.hpp"
+#include "sweeps/engine/once_cache.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/point_reader.hpp"
 #include "sweeps/engine/spec.hpp"
@@ -119,61 +120,11 @@ residual::MotionTrial default_trial(const MultipodTrialKey& key) {
 #endif
 }
 
-/// Values computed once per key: the first request computes, concurrent ones wait on its
-/// shared_future, later ones get the stored object (or the stored error).
-template <class Value>
-class OnceCache {
- public:
-  using Pointer = std::shared_ptr<const Value>;
-
-  template <class Make>
-  Pointer get(const MultipodTrialKey& key, Make&& make) {
-    std::promise<Pointer> promise;
-    std::shared_future<Pointer> future;
-    bool mine = false;
-    {
-      const std::lock_guard lock(mutex_);
-      const auto it = entries_.find(key);
-      if (it != entries_.end()) {
-        future = it->second;
-      } else {
-        future = promise.get_future().share();
-        entries_.emplace(key, future);
-        mine = true;
-      }
-    }
-    if (mine) {
-      try {
-        promise.set_value(std::make_shared<const Value>(make()));
-      } catch (const std::logic_error&) {
-        promise.set_exception(std::current_exception());  // a bug: let it through as it is
-      } catch (const std::exception& e) {
-        // Bad input to the trial (the template refusing it) or a failed computation: the
-        // points that need this trial fail with its message.
-        const std::string what = e.what();
-        const std::string label = trial_label(key);
-        promise.set_exception(std::make_exception_ptr(core::ComputationError(
-            what.find(label) == std::string::npos ? label + ": " + what : what)));
-      }
-    }
-    return future.get();
-  }
-
-  void clear() {
-    const std::lock_guard lock(mutex_);
-    entries_.clear();
-  }
-
- private:
-  std::mutex mutex_;
-  std::map<MultipodTrialKey, std::shared_future<Pointer>> entries_;
-};
-
 struct TrialCache {
   std::mutex source_mutex;
   TrialSource source;  // empty: default_trial
-  OnceCache<residual::MotionTrial> trials;
-  OnceCache<residual::TemplatePrediction> predictions;
+  engine::OnceCache<MultipodTrialKey, residual::MotionTrial> trials;
+  engine::OnceCache<MultipodTrialKey, residual::TemplatePrediction> predictions;
 
   TrialSource current_source() {
     const std::lock_guard lock(source_mutex);
@@ -215,15 +166,19 @@ std::string trial_label(const MultipodTrialKey& key) {
 
 std::shared_ptr<const residual::MotionTrial> cached_trial(MultipodTrialKey key) {
   key = canonical(key);
-  return cache().trials.get(key, [&] { return cache().current_source()(key); });
+  return cache().trials.get(
+      key, [&] { return cache().current_source()(key); }, trial_label);
 }
 
 std::shared_ptr<const residual::TemplatePrediction> cached_prediction(MultipodTrialKey key) {
   key = canonical(key);
-  return cache().predictions.get(key, [&] {
-    const std::shared_ptr<const residual::MotionTrial> trial = cached_trial(key);
-    return residual::predict(template_robot(key.legs), *trial);
-  });
+  return cache().predictions.get(
+      key,
+      [&] {
+        const std::shared_ptr<const residual::MotionTrial> trial = cached_trial(key);
+        return residual::predict(template_robot(key.legs), *trial);
+      },
+      trial_label);
 }
 
 TrialSource set_trial_source(TrialSource source) {
