@@ -18,10 +18,11 @@
 //                            z-scores and times (the cost of accuracy in data).
 //
 // Shared parameters (defaults): seed = 1, noise_scale = 1, poses = 543, samples_per_cycle = 900,
-// cycles = 10 (the synthetic options of calibration/synthetic.hpp; every other one at its default).
-// Every kind but calib_accuracy takes its robot and default calibration from the process-wide cache
-// of calibration.hpp; calib_accuracy makes its own (its grid is large and its times must be its
-// own). The two kinds that time (calib_starts, calib_accuracy) are timed: they run one at a time.
+// cycles = 10, mounting_translation = 0.003 m (the synthetic options of calibration/synthetic.hpp;
+// every other one at its default). Every kind but calib_accuracy takes its robot and default
+// calibration from the process-wide cache of calibration.hpp; calib_accuracy makes its own (its
+// grid is large and its times must be its own). The two kinds that time (calib_starts,
+// calib_accuracy) are timed: they run one at a time.
 //
 // Units: forces N, torques N·m, rotations rad (rotation vectors), displacements m, phases turns.
 #include "sweeps/points/calibration.hpp"
@@ -62,8 +63,8 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 
 // --- shared inputs ------------------------------------------------------------------------------
 
-const std::vector<std::string_view> kSharedKeys = {"seed", "noise_scale", "poses",
-                                                   "samples_per_cycle", "cycles"};
+const std::vector<std::string_view> kSharedKeys = {
+    "seed", "noise_scale", "poses", "samples_per_cycle", "cycles", "mounting_translation"};
 
 std::vector<std::string_view> keys_with(std::vector<std::string_view> own) {
   own.insert(own.end(), kSharedKeys.begin(), kSharedKeys.end());
@@ -87,6 +88,8 @@ SynthKey read_shared(const Reader& r) {
   k.poses = static_cast<int>(r.integer("poses", 543, kMinPoses, 729));
   k.samples_per_cycle = static_cast<int>(r.integer("samples_per_cycle", 900, 8, 100000));
   k.cycles = static_cast<int>(r.integer("cycles", 10, 1, 100));
+  // The synthetic robot refuses translation errors of 5 cm or more (calibration/synthetic.hpp).
+  k.mounting_translation = r.number("mounting_translation", 0.003, core::closed(0.0, 0.049, "m"));
   const double samples = static_cast<double>(k.samples_per_cycle) * k.cycles;
   r.limit_work("samples_per_cycle", "samples_per_cycle · cycles hanging samples per record",
                samples, kMaxSamples);
@@ -519,6 +522,7 @@ struct ModelRow {
   long long seed = 0;
   double noise_scale = 0.0;
   long long poses = 0;
+  double mounting_translation = 0.0;
   std::string model;
   long long dof = 0;
   double rss = 0.0;
@@ -532,6 +536,7 @@ struct ModelRow {
             value("seed", &R::seed),
             value("noise_scale", &R::noise_scale),
             value("poses", &R::poses),
+            value("mounting_translation", &R::mounting_translation),
             value("model", &R::model),
             value("dof", &R::dof),
             value("rss", &R::rss),
@@ -560,6 +565,7 @@ Rows<ModelRow> run_models(const Point& point) {
       r.seed = static_cast<long long>(in.key.seed);
       r.noise_scale = in.key.noise_scale;
       r.poses = in.key.poses;
+      r.mounting_translation = in.key.mounting_translation;
       r.model = cal::model_label(scores[i].model);
       r.dof = scores[i].dof;
       r.rss = scores[i].rss;

@@ -39,12 +39,15 @@ struct SynthKey {
   int poses = 543;
   int samples_per_cycle = 900;
   int cycles = 10;
+  double mounting_translation = 0.003;  ///< m, σ per axis of the transducers' translation errors
 
   bool operator==(const SynthKey&) const = default;
   /// Lexicographic over the fields (the cache's order).
   friend bool operator<(const SynthKey& a, const SynthKey& b) {
-    return std::tie(a.seed, a.noise_scale, a.poses, a.samples_per_cycle, a.cycles) <
-           std::tie(b.seed, b.noise_scale, b.poses, b.samples_per_cycle, b.cycles);
+    return std::tie(a.seed, a.noise_scale, a.poses, a.samples_per_cycle, a.cycles,
+                    a.mounting_translation) < std::tie(b.seed, b.noise_scale, b.poses,
+                                                       b.samples_per_cycle, b.cycles,
+                                                       b.mounting_translation);
   }
   /// SynthOptions at their defaults but for the key's fields.
   [[nodiscard]] calibration::SynthOptions options() const;

@@ -24,7 +24,8 @@ std::string robot_label(const SynthKey& key) {
   return "synthetic BigANT (seed " + std::to_string(key.seed) + ", noise scale " +
          core::format_double(key.noise_scale) + ", " + std::to_string(key.poses) + " poses, " +
          std::to_string(key.samples_per_cycle) + " samples per cycle × " +
-         std::to_string(key.cycles) + " cycles)";
+         std::to_string(key.cycles) + " cycles, translation errors σ " +
+         core::format_double(key.mounting_translation) + " m)";
 }
 
 struct Cache {
@@ -45,6 +46,7 @@ calibration::SynthOptions SynthKey::options() const {
   o.noise_scale = noise_scale;
   o.poses = poses;
   o.samples_per_cycle = samples_per_cycle;
+  o.mounting_translation = mounting_translation;
   o.cycles = cycles;
   return o;
 }
