@@ -7,10 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <iostream>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -600,31 +598,6 @@ TEST(Standing, LabelsAndDegreesOfFreedomAreTableFourTwos) {
   EXPECT_EQ(model_dof(MountingModel::com_only, 6), 3);
   EXPECT_EQ(model_label(MountingModel::shared_translation), "shared_translation");
   EXPECT_EQ(solver_label(MountingSolver::ceres_so3), "ceres_so3");
-}
-
-// Timing only (run with --gtest_also_run_disabled_tests): both solvers on 543 noisy poses.
-TEST(Standing, DISABLED_TimesBothSolversOn543Poses) {
-  for (const double tilt : {0.08, 0.02}) {
-    ScenarioOptions o;
-    o.poses = 543;
-    o.force_noise = 0.2;
-    o.torque_noise = 0.02;
-    o.max_tilt = tilt;
-    const Scenario s = make_scenario(12, o);
-    for (const MountingSolver solver : {MountingSolver::alternating, MountingSolver::ceres_so3}) {
-      const auto begin = std::chrono::steady_clock::now();
-      const MountingEstimate e =
-          fit_mounting(s.geometry, s.poses, s.hanging, with(MountingModel::full, solver));
-      const double total =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-      std::cout << "tilt " << tilt << " " << solver_label(solver) << ": solve " << e.seconds
-                << " s, with SE " << total << " s, iterations " << e.iterations << ", converged "
-                << e.converged << ", rss " << e.rss << ", smallest singular value "
-                << e.smallest_singular_value << ", rotation error "
-                << max_rotation_error(e, s.truth) << ", displacement error "
-                << max_displacement_error(e, s.truth) << "\n";
-    }
-  }
 }
 
 }  // namespace

@@ -2,8 +2,7 @@
 // and come back with its leg weights; every class of bad input — a column, an orientation, a
 // pairing, a pose count, a quaternion, an option — exits 2 naming the option or file:line[:col]
 // before any work and writes nothing; synth writes its four files together or not at all and
-// refuses to replace an earlier set without --force. Tests that need the synthetic robot or the
-// calibration stages skip while those are stubs (the binary exits 1 saying "not built yet").
+// refuses to replace an earlier set without --force.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -20,16 +19,6 @@ namespace slipwalk::testing {
 namespace {
 
 namespace cal = calibration;
-
-/// True when the command failed only because a stage it calls is still a stub.
-bool not_built(const CommandResult& r) {
-  return r.exit_code == 1 && r.err.find("not built yet") != std::string::npos;
-}
-
-#define SKIP_IF_NOT_BUILT(r)                                             \
-  if (not_built(r)) {                                                    \
-    GTEST_SKIP() << "a calibration stage is not built yet: " << (r).err; \
-  }
 
 cal::Geometry two_legs() {
   cal::Geometry g;
@@ -198,14 +187,8 @@ TEST(CliCalibrate, TooFewPosesOrABadQuaternionAreRefused) {
 TEST(CliCalibrate, EachModelsPoseCountIsItsDofOverSixPlusOne) {
   const Inputs in;
   for (const cal::MountingModel m : cal::kMountingModels) {
-    int dof = 0;
-    std::string label;
-    try {
-      dof = cal::model_dof(m, 2);
-      label = cal::model_label(m);
-    } catch (const std::logic_error& e) {
-      GTEST_SKIP() << "the standing stage is not built yet: " << e.what();
-    }
+    const int dof = cal::model_dof(m, 2);
+    const std::string label{cal::model_label(m)};
     const Eigen::Index needed = dof / 6 + 1;
     if (needed > 1) {
       write_text(in.dir / "p.csv", poses_text(needed - 1));
@@ -261,7 +244,6 @@ TEST(CliCalibrateSynth, RefusesAFolderWithAnEarlierSetUnlessForced) {
   const CommandResult forced =
       run_slipwalk({"calibrate", "synth", "--out", dir.path().string(), "--force", "--poses", "20",
                     "--samples-per-cycle", "16", "--cycles", "1"});
-  SKIP_IF_NOT_BUILT(forced);
   ASSERT_EQ(forced.exit_code, 0) << forced.err;
   EXPECT_EQ(files_under(dir.path()),
             (std::vector<std::string>{"geometry.toml", "hanging.csv", "poses.csv", "truth.json"}));
@@ -271,7 +253,6 @@ TEST(CliCalibrateSynth, ABadOptionIsRefusedNamingItAndWritesNothing) {
   const ScratchDir dir;
   const CommandResult r =
       run_slipwalk({"calibrate", "synth", "--out", (dir / "s").string(), "--poses", "800"});
-  SKIP_IF_NOT_BUILT(r);
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("slipwalk: error: --poses"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "s"));
@@ -283,7 +264,6 @@ TEST(CliCalibrateSynth, ItsFilesCalibrateToTheTruthsWeights) {
   const CommandResult made =
       run_slipwalk({"calibrate", "synth", "--out", s.string(), "--seed", "3", "--poses", "80",
                     "--samples-per-cycle", "100", "--cycles", "3"});
-  SKIP_IF_NOT_BUILT(made);
   ASSERT_EQ(made.exit_code, 0) << made.err;
   const nlohmann::json truth = nlohmann::json::parse(read_text(s / "truth.json"));
   EXPECT_EQ(truth["command"], "calibrate synth");
@@ -300,7 +280,6 @@ TEST(CliCalibrateSynth, ItsFilesCalibrateToTheTruthsWeights) {
       run_slipwalk({"calibrate", "--geometry", (s / "geometry.toml").string(), "--hanging",
                     (s / "hanging.csv").string(), "--poses", (s / "poses.csv").string(), "--out",
                     (dir / "params.json").string(), "--model", "com_only"});
-  SKIP_IF_NOT_BUILT(r);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("slipwalk calibrate: 6 transducers, 4 hanging records, 80 poses"),
             std::string::npos)

@@ -3,8 +3,7 @@
 // computes a robot and its calibration once per key however many threads ask. End to end on a
 // small synthetic robot, the rows are the calibration's own numbers (read back from the cache and
 // recomputed through the library), the accuracy kind's own calibration agrees with the cached one,
-// and Table 4.2's rows select exactly one model. The end-to-end tests skip while a stage of
-// lib/calibration is not built (it throws std::logic_error).
+// and Table 4.2's rows select exactly one model.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -67,16 +66,6 @@ PointResult run(const std::string& kind, const std::string& params) {
   EXPECT_FALSE(r.failed) << r.message;
   return r;
 }
-
-/// Skips the calling test while a stage of lib/calibration throws std::logic_error (not built).
-#define SKIP_UNLESS_CALIBRATION_BUILT()                                 \
-  do {                                                                  \
-    try {                                                               \
-      (void)points::cached_calibration(small_key());                    \
-    } catch (const std::logic_error& e) {                               \
-      GTEST_SKIP() << "lib/calibration is not built yet: " << e.what(); \
-    }                                                                   \
-  } while (false)
 
 void expect_refused_at_last_line(const std::string& kind, const std::string& params) {
   const std::vector<Point> pts = test_support::points_of(kind, "[params]\n" + params);
@@ -157,43 +146,29 @@ TEST(CalibrationPoints, TheCacheComputesARobotAndItsCalibrationOnceForConcurrent
   const points::SynthKey key = small_key();
   constexpr int kThreads = 8;
   std::vector<std::shared_ptr<const cal::Calibration>> got(kThreads);
-  std::vector<int> logic_errors(kThreads, 0);
   std::vector<std::thread> threads;
   threads.reserve(kThreads);
   for (int i = 0; i < kThreads; ++i) {
-    threads.emplace_back([&, i] {
-      try {
-        got[static_cast<std::size_t>(i)] = points::cached_calibration(key);
-      } catch (const std::logic_error&) {
-        logic_errors[static_cast<std::size_t>(i)] = 1;  // a stage not built: stored, once
-      }
-    });
+    threads.emplace_back(
+        [&, i] { got[static_cast<std::size_t>(i)] = points::cached_calibration(key); });
   }
   for (std::thread& t : threads) {
     t.join();
   }
-  // One robot and one calibration, whatever the outcome; every thread saw the same one.
+  // One robot and one calibration; every thread saw the same one.
   EXPECT_EQ(points::calibration_cache_computations(), 2U);
-  const auto failed = std::count(logic_errors.begin(), logic_errors.end(), 1);
-  EXPECT_TRUE(failed == 0 || failed == kThreads);
+  ASSERT_NE(got.front(), nullptr);
   for (const auto& c : got) {
     EXPECT_EQ(c, got.front());
   }
   // Later requests of the same key compute nothing; another key computes its own.
-  try {
-    (void)points::cached_robot(key);
-  } catch (const std::logic_error&) {
-  }
+  (void)points::cached_robot(key);
   EXPECT_EQ(points::calibration_cache_computations(), 2U);
-  try {
-    (void)points::cached_robot(small_key(0.5));
-  } catch (const std::logic_error&) {
-  }
+  (void)points::cached_robot(small_key(0.5));
   EXPECT_EQ(points::calibration_cache_computations(), 3U);
 }
 
 TEST(CalibrationPoints, ParameterRowsAreTheCalibrationsOwnNumbersAgainstTheTruth) {
-  SKIP_UNLESS_CALIBRATION_BUILT();
   const auto robot = points::cached_robot(small_key());
   const auto c = points::cached_calibration(small_key());
   const PointKind& f = test_support::point_kind("calib_parameters");
@@ -235,7 +210,6 @@ TEST(CalibrationPoints, ParameterRowsAreTheCalibrationsOwnNumbersAgainstTheTruth
 }
 
 TEST(CalibrationPoints, ComRowsBinTheSamplesAndCarryTheFitAndTheTruth) {
-  SKIP_UNLESS_CALIBRATION_BUILT();
   const auto robot = points::cached_robot(small_key());
   const auto c = points::cached_calibration(small_key());
   const PointKind& f = test_support::point_kind("calib_com");
@@ -267,7 +241,6 @@ TEST(CalibrationPoints, ComRowsBinTheSamplesAndCarryTheFitAndTheTruth) {
 }
 
 TEST(CalibrationPoints, ResidualRowsAreReadingsLessTheModelsPrediction) {
-  SKIP_UNLESS_CALIBRATION_BUILT();
   const auto robot = points::cached_robot(small_key());
   const auto c = points::cached_calibration(small_key());
   const PointKind& f = test_support::point_kind("calib_hanging_residuals");
@@ -309,7 +282,6 @@ TEST(CalibrationPoints, ResidualRowsAreReadingsLessTheModelsPrediction) {
 }
 
 TEST(CalibrationPoints, TableFourTwoSelectsTheSmallestBicAndTheAccuracyRowAgreesWithTheParameters) {
-  SKIP_UNLESS_CALIBRATION_BUILT();
   const PointKind& f = test_support::point_kind("calib_models");
   const PointResult models = run("calib_models", kSmall);
   ASSERT_EQ(models.rows.size(), 4U);
@@ -354,7 +326,6 @@ TEST(CalibrationPoints, TableFourTwoSelectsTheSmallestBicAndTheAccuracyRowAgrees
 }
 
 TEST(CalibrationPoints, NoiselessDataGiveTheTruthBack) {
-  SKIP_UNLESS_CALIBRATION_BUILT();
   const PointKind& a = test_support::point_kind("calib_accuracy");
   const PointResult acc = run("calib_accuracy", std::string(kSmall) + "noise_scale = 0\n");
   ASSERT_EQ(acc.rows.size(), 1U);
