@@ -1,8 +1,10 @@
 #pragma once
 // Shared by the tests of sweep point kinds: a spec's points from the body of a study file,
 // a point kind by name, a column's index in its rows (throwing, so that a renamed column fails
-// the test instead of reading past the row), and the first difference between two runs of a
-// point outside its timing columns.
+// the test instead of reading past the row), the first difference between two runs of a point
+// outside its timing columns, and the check that a kind refuses a parameter at its value.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <bit>
 #include <cstddef>
@@ -12,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/error.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/spec.hpp"
 #include "sweeps/points/families.hpp"
@@ -68,6 +71,27 @@ inline std::string first_value_difference(const sweeps::PointKind& f, const swee
     }
   }
   return "";
+}
+
+/// The kind's check refuses the last line of `params` (key = value) at that value's
+/// file:line:col of the spec points_of makes, naming the key.
+inline void expect_refused_at_last_line(const std::string& kind, const std::string& params) {
+  const std::vector<sweeps::Point> pts = points_of(kind, "[params]\n" + params);
+  const std::size_t lines =
+      static_cast<std::size_t>(std::count(params.begin(), params.end(), '\n'));
+  const std::size_t last = params.rfind('\n', params.size() - 2);
+  const std::string line = params.substr(last == std::string::npos ? 0 : last + 1);
+  const std::string key = line.substr(0, line.find(' '));
+  // The spec: three header lines and [params], then params: its last line is 4 + lines.
+  const std::string place =
+      "peer.toml:" + std::to_string(4 + lines) + ":" + std::to_string(key.size() + 4);
+  try {
+    point_kind(kind).check(pts.at(0));
+    ADD_FAILURE() << kind << " accepted: " << params;
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.where(), place) << e.what();
+    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace slipwalk::test_support

@@ -67,24 +67,6 @@ PointResult run(const std::string& kind, const std::string& params) {
   return r;
 }
 
-void expect_refused_at_last_line(const std::string& kind, const std::string& params) {
-  const std::vector<Point> pts = test_support::points_of(kind, "[params]\n" + params);
-  const std::size_t lines =
-      static_cast<std::size_t>(std::count(params.begin(), params.end(), '\n'));
-  const std::size_t last = params.rfind('\n', params.size() - 2);
-  const std::string line = params.substr(last == std::string::npos ? 0 : last + 1);
-  const std::string key = line.substr(0, line.find(' '));
-  const std::string place =
-      "peer.toml:" + std::to_string(4 + lines) + ":" + std::to_string(key.size() + 4);
-  try {
-    test_support::point_kind(kind).check(pts.at(0));
-    ADD_FAILURE() << kind << " accepted: " << params;
-  } catch (const core::InputError& e) {
-    EXPECT_EQ(e.where(), place) << e.what();
-    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-  }
-}
-
 TEST(CalibrationPoints, EveryKindIsRegisteredWithTheColumnsTheReportReads) {
   const std::map<std::string, std::vector<std::string>> wanted = {
       {"calib_parameters", {"leg", "parameter", "estimate", "se", "truth", "error", "z"}},
@@ -119,26 +101,29 @@ TEST(CalibrationPoints, EveryKindIsRegisteredWithTheColumnsTheReportReads) {
 }
 
 TEST(CalibrationPoints, ChecksRefuseBadParametersAtTheValue) {
-  expect_refused_at_last_line("calib_parameters", "poses = 5\n");
-  expect_refused_at_last_line("calib_parameters", "poses = 730\n");
-  expect_refused_at_last_line("calib_parameters", "seed = 0.5\n");
-  expect_refused_at_last_line("calib_parameters", "noise_scale = -1\n");
-  expect_refused_at_last_line("calib_parameters", "noise_scale = \"loud\"\n");
-  expect_refused_at_last_line("calib_parameters", "cycles = 0\n");
-  expect_refused_at_last_line("calib_parameters", "cycles = 100\nsamples_per_cycle = 9000\n");
-  expect_refused_at_last_line("calib_parameters", "cycles = 1\nsamples_per_cycle = 8\n");
-  expect_refused_at_last_line("calib_parameters", "bins = 36\n");  // another kind's key
-  expect_refused_at_last_line("calib_com", "bins = 0\n");
-  expect_refused_at_last_line("calib_hanging_residuals", "stride = 0\n");
-  expect_refused_at_last_line("calib_models", "folds = 1\n");
-  expect_refused_at_last_line("calib_models", "poses = 10\nfolds = 3\n");
-  expect_refused_at_last_line("calib_models", "poses = 10\nfolds = 11\n");
-  expect_refused_at_last_line("calib_starts", "solver = \"newton\"\n");
-  expect_refused_at_last_line("calib_starts", "starts = 0\n");
-  expect_refused_at_last_line("calib_starts", "max_iterations = 0\n");
-  expect_refused_at_last_line("calib_starts", "max_angle_deg = 91\n");
-  expect_refused_at_last_line("calib_starts", "max_displacement = -0.1\n");
-  expect_refused_at_last_line("calib_accuracy", "stride = 10\n");
+  test_support::expect_refused_at_last_line("calib_parameters", "poses = 5\n");
+  test_support::expect_refused_at_last_line("calib_parameters", "poses = 730\n");
+  test_support::expect_refused_at_last_line("calib_parameters", "seed = 0.5\n");
+  test_support::expect_refused_at_last_line("calib_parameters", "noise_scale = -1\n");
+  test_support::expect_refused_at_last_line("calib_parameters", "noise_scale = \"loud\"\n");
+  test_support::expect_refused_at_last_line("calib_parameters", "cycles = 0\n");
+  test_support::expect_refused_at_last_line("calib_parameters",
+                                            "cycles = 100\nsamples_per_cycle = 9000\n");
+  test_support::expect_refused_at_last_line("calib_parameters",
+                                            "cycles = 1\nsamples_per_cycle = 8\n");
+  test_support::expect_refused_at_last_line("calib_parameters",
+                                            "bins = 36\n");  // another kind's key
+  test_support::expect_refused_at_last_line("calib_com", "bins = 0\n");
+  test_support::expect_refused_at_last_line("calib_hanging_residuals", "stride = 0\n");
+  test_support::expect_refused_at_last_line("calib_models", "folds = 1\n");
+  test_support::expect_refused_at_last_line("calib_models", "poses = 10\nfolds = 3\n");
+  test_support::expect_refused_at_last_line("calib_models", "poses = 10\nfolds = 11\n");
+  test_support::expect_refused_at_last_line("calib_starts", "solver = \"newton\"\n");
+  test_support::expect_refused_at_last_line("calib_starts", "starts = 0\n");
+  test_support::expect_refused_at_last_line("calib_starts", "max_iterations = 0\n");
+  test_support::expect_refused_at_last_line("calib_starts", "max_angle_deg = 91\n");
+  test_support::expect_refused_at_last_line("calib_starts", "max_displacement = -0.1\n");
+  test_support::expect_refused_at_last_line("calib_accuracy", "stride = 10\n");
 }
 
 TEST(CalibrationPoints, TheCacheComputesARobotAndItsCalibrationOnceForConcurrentRequests) {

@@ -58,52 +58,33 @@ PointResult run(const std::string& kind, const std::string& params) {
   return f.run(pts.at(0));
 }
 
-/// The check refuses the last line of `params` (key = value) at that value's file:line:col.
-void expect_refused_at_last_line(const std::string& kind, const std::string& params) {
-  const std::vector<Point> pts = test_support::points_of(kind, "[params]\n" + params);
-  const std::size_t lines =
-      static_cast<std::size_t>(std::count(params.begin(), params.end(), '\n'));
-  const std::size_t last = params.rfind('\n', params.size() - 2);
-  const std::string line = params.substr(last == std::string::npos ? 0 : last + 1);
-  const std::string key = line.substr(0, line.find(' '));
-  // The spec: three header lines and [params], then params: its last line is 4 + lines.
-  const std::string place =
-      "peer.toml:" + std::to_string(4 + lines) + ":" + std::to_string(key.size() + 4);
-  try {
-    test_support::point_kind(kind).check(pts.at(0));
-    ADD_FAILURE() << kind << " accepted: " << params;
-  } catch (const core::InputError& e) {
-    EXPECT_EQ(e.where(), place) << e.what();
-    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-  }
-}
-
 TEST(ResidualPoints, ChecksRefuseBadParametersAtTheValue) {
-  expect_refused_at_last_line("multipod_trial", "cycles = 21\n");
-  expect_refused_at_last_line("multipod_trial", "dphi_pi = 2.5\n");
-  expect_refused_at_last_line("multipod_trial", "frequency = 0.0\n");
-  expect_refused_at_last_line("multipod_trial", "skip_cycles = 8\n");
-  expect_refused_at_last_line("multipod_trial", "asymmetry = 2.5\n");
-  expect_refused_at_last_line("multipod_trial", "seed = 0.5\n");
-  expect_refused_at_last_line("multipod_trial", "sample_rate = 1001\n");
-  expect_refused_at_last_line("multipod_trial", "timestep = 0.01\n");
-  expect_refused_at_last_line("multipod_trial", "dphi = 1.0\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "cycles = 21\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "dphi_pi = 2.5\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "frequency = 0.0\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "skip_cycles = 8\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "asymmetry = 2.5\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "seed = 0.5\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "sample_rate = 1001\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "timestep = 0.01\n");
+  test_support::expect_refused_at_last_line("multipod_trial", "dphi = 1.0\n");
   // A trial of 20 cycles at 0.05 Hz with a 10 µs step is 4e7 MuJoCo steps: over the bound.
-  expect_refused_at_last_line("multipod_trial",
-                              "cycles = 20\nfrequency = 0.05\nsample_rate = 10\ntimestep = 1e-5\n");
-  expect_refused_at_last_line("residual_transfer", "train_dphi_pi = \"0.65 x\"\n");
-  expect_refused_at_last_line("residual_transfer", "train_dphi_pi = \"0.65 0.65\"\n");
-  expect_refused_at_last_line("residual_transfer", "train_dphi_pi = \"\"\n");
-  expect_refused_at_last_line("residual_transfer", "train_dphi_pi = 0.65\n");
-  expect_refused_at_last_line("residual_transfer", "estimator = \"lasso\"\n");
-  expect_refused_at_last_line("residual_transfer",
-                              "train_dphi_pi = \"1.0\"\nestimator = \"ridge\"\n");
-  expect_refused_at_last_line("residual_errors", "test_frequency = 50\n");
-  expect_refused_at_last_line("residual_errors", "train_frequency = 0.01\n");
-  expect_refused_at_last_line("residual_training", "draws = 101\n");
-  expect_refused_at_last_line("residual_training", "train_trials = 21\n");  // pool: 26 − 6
-  expect_refused_at_last_line("residual_training", "validate_dphi_pi = \"3.0\"\n");
-  expect_refused_at_last_line("residual_training", "train_trials = 0\n");
+  test_support::expect_refused_at_last_line(
+      "multipod_trial", "cycles = 20\nfrequency = 0.05\nsample_rate = 10\ntimestep = 1e-5\n");
+  test_support::expect_refused_at_last_line("residual_transfer", "train_dphi_pi = \"0.65 x\"\n");
+  test_support::expect_refused_at_last_line("residual_transfer", "train_dphi_pi = \"0.65 0.65\"\n");
+  test_support::expect_refused_at_last_line("residual_transfer", "train_dphi_pi = \"\"\n");
+  test_support::expect_refused_at_last_line("residual_transfer", "train_dphi_pi = 0.65\n");
+  test_support::expect_refused_at_last_line("residual_transfer", "estimator = \"lasso\"\n");
+  test_support::expect_refused_at_last_line("residual_transfer",
+                                            "train_dphi_pi = \"1.0\"\nestimator = \"ridge\"\n");
+  test_support::expect_refused_at_last_line("residual_errors", "test_frequency = 50\n");
+  test_support::expect_refused_at_last_line("residual_errors", "train_frequency = 0.01\n");
+  test_support::expect_refused_at_last_line("residual_training", "draws = 101\n");
+  test_support::expect_refused_at_last_line("residual_training",
+                                            "train_trials = 21\n");  // pool: 26 − 6
+  test_support::expect_refused_at_last_line("residual_training", "validate_dphi_pi = \"3.0\"\n");
+  test_support::expect_refused_at_last_line("residual_training", "train_trials = 0\n");
 }
 
 // --- the cache ----------------------------------------------------------------------------------
