@@ -2,7 +2,9 @@
 // Runs a sweep: checks every point, computes the points on N threads, checkpoints each finished
 // point to `<name>.partial.csv`, and on completion writes `<data>/<study>/<name>.csv` (rows sorted
 // by id: the same bytes whatever the thread count, wall_s aside) and the provenance sidecar
-// `<name>.json`, both atomically. See sweeps/README.md.
+// `<name>.json`, both atomically. A run may be one shard of the sweep (`--shard k/n`, its own
+// files, merged by merge_shards in shards.hpp); across MPI ranks it is engine/mpi/mpi_run.hpp.
+// See sweeps/README.md.
 #include <cstddef>
 #include <filesystem>
 #include <ostream>
@@ -10,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "sweeps/engine/checkpoint.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/spec.hpp"
 
@@ -25,19 +28,21 @@ struct RunOptions {
   long long max_points = -1;
   std::ostream* progress = nullptr;  ///< progress lines; null: silent
   double progress_interval_s = 1.0;  ///< at most one progress line per this many seconds
+  Shard shard;                       ///< the shard to run ({1, 1}: the whole sweep)
 };
 
 struct RunSummary {
   std::filesystem::path csv;      ///< the result (written only when complete)
   std::filesystem::path sidecar;  ///< its provenance
   std::filesystem::path partial;  ///< the checkpoint (removed when complete)
-  long long points = 0;           ///< in the spec
+  long long points = 0;           ///< in the spec (in the shard, for a shard)
   long long resumed = 0;          ///< taken from the checkpoint
   long long computed = 0;         ///< in this run
   long long failed = 0;           ///< points whose solve failed (all runs)
   bool complete = false;          ///< false when max_points stopped the run
-  unsigned jobs = 1;
-  double wall_s = 0.0;  ///< this run
+  unsigned jobs = 1;              ///< threads (per rank)
+  unsigned ranks = 1;             ///< MPI ranks
+  double wall_s = 0.0;            ///< this run
 };
 
 /// A spec whose points are expanded and checked: nothing has been written yet.
