@@ -13,6 +13,7 @@ DEBIAN_PACKAGES := cmake g++ make pkg-config git \
   libeigen3-dev libsundials-dev libgsl-dev libboost-dev \
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev \
   libceres-dev \
+  openmpi-bin libopenmpi-dev \
   libmujoco-dev \
   python3 python3-matplotlib python3-numpy python3-markdown chromium
 

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -60,11 +61,22 @@ void unregister_temporary(int i) {
   }
 }
 
+// The farewell of set_signal_farewell(): state 0 none, 1 being written, 2 set.
+std::atomic<int> g_farewell_state{0};
+std::array<char, 2048> g_farewell{};
+std::size_t g_farewell_size = 0;
+int g_farewell_code = 1;
+
 extern "C" void unlink_temporaries_and_reraise(int sig) {
   for (Slot& slot : g_slots) {
     if (slot.state.load(std::memory_order_acquire) == 2) {
       ::unlink(slot.path.data());
     }
+  }
+  if (g_farewell_state.load(std::memory_order_acquire) == 2) {
+    const ssize_t written = ::write(2, g_farewell.data(), g_farewell_size);
+    (void)written;  // nothing more can be done about a failed write here
+    ::_exit(g_farewell_code);
   }
   struct sigaction dfl {};
   dfl.sa_handler = SIG_DFL;  // NOLINT(cppcoreguidelines-pro-type-union-access)
@@ -174,6 +186,15 @@ void check_output_dir(const std::filesystem::path& dir, const std::string& optio
 }
 
 void set_note_stream(std::ostream* notes) { g_notes = notes; }
+
+void set_signal_farewell(const std::string& message, int exit_code) {
+  g_farewell_state.store(1);
+  const std::string line = message.empty() ? std::string() : message + "\n";
+  g_farewell_size = std::min(line.size(), g_farewell.size());
+  std::memcpy(g_farewell.data(), line.data(), g_farewell_size);
+  g_farewell_code = exit_code;
+  g_farewell_state.store(message.empty() ? 0 : 2, std::memory_order_release);
+}
 
 void install_signal_cleanup() {
   static const bool installed = [] {

@@ -40,6 +40,12 @@ void set_note_stream(std::ostream* notes);
 /// re-raise the signal with its default action. Idempotent.
 void install_signal_cleanup();
 
+/// Once set, a SIGINT or SIGTERM handled by install_signal_cleanup()'s handler writes `message`
+/// (and a newline) to stderr after the temporaries are gone and ends the process with
+/// `exit_code` instead of re-raising: how a process that is told to stop by its launcher (an MPI
+/// runtime ending a job whose rank died) says what it kept. An empty message unsets it.
+void set_signal_farewell(const std::string& message, int exit_code);
+
 /// Removes `<target>.tmp.<pid>` files beside `target` whose process no longer runs; returns them.
 std::vector<std::filesystem::path> remove_stale_temporaries(const std::filesystem::path& target);
 

@@ -6,11 +6,13 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <string>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/json_input.hpp"
 #include "sweeps/cli/commands.hpp"
+#include "sweeps/engine/mpi/mpi_run.hpp"
 
 namespace {
 /// The longest error message printed: room for a path, a place and a sentence.
@@ -51,6 +53,12 @@ int main(int argc, char** argv) {
               << "\n";
     return code;
   };
+  // Under an MPI launcher every rank runs this binary: only `slipwalk sweep` shares the work out
+  // (and refuses when built without MPI); anything else would run once per rank, each writing the
+  // same files.
+  if (slipwalk::sweeps::mpi::launched() && (argc < 2 || std::string(argv[1]) != "sweep")) {
+    return report("MPI launcher: only `slipwalk sweep` runs under mpirun or srun", 2);
+  }
   try {
     app.parse(argc, argv);
     return stdout_failed() ? 1 : 0;
@@ -62,6 +70,8 @@ int main(int argc, char** argv) {
     return stdout_failed() ? 1 : code;
   } catch (const CLI::ParseError& e) {
     return report(e.what(), 2);
+  } catch (const slipwalk::sweeps::mpi::QuietExit& e) {
+    return e.code;  // another rank, rank 0, reported the error
   } catch (const slipwalk::core::InputError& e) {
     return report(e.what(), 2);
   } catch (const std::exception& e) {

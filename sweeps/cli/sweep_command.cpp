@@ -1,14 +1,20 @@
-// slipwalk sweep SPEC.toml [--jobs N] [--resume] [--quick] [--data DIR] (sweeps/README.md).
+// slipwalk sweep SPEC.toml [--jobs N] [--resume] [--quick] [--data DIR] [--shard k/n] [--mpi]
+// slipwalk sweep merge SPEC.toml [--quick] [--data DIR] [--shards N] [--keep-shards]
+// Under an MPI launcher (mpirun -np R slipwalk sweep ...) the points go over the ranks
+// (sweeps/engine/mpi/mpi_run.hpp); see sweeps/README.md.
 #include <array>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "sweeps/cli/commands.hpp"
+#include "sweeps/engine/mpi/mpi_run.hpp"
 #include "sweeps/engine/runner.hpp"
+#include "sweeps/engine/shards.hpp"
 #include "sweeps/engine/spec.hpp"
 #include "sweeps/points/families.hpp"
 
@@ -16,33 +22,43 @@ namespace slipwalk::cli {
 
 namespace {
 
+using core::InputError;
+
+std::string default_data() { return std::string(SLIPWALK_SOURCE_DIR) + "/data"; }
+
 struct SweepCommand {
   std::string spec;
   int jobs = 0;
   bool resume = false;
   bool quick = false;
   bool no_timing = false;
-  std::string data = std::string(SLIPWALK_SOURCE_DIR) + "/data";
+  std::string data = default_data();
+  std::string shard;
+  bool mpi = false;
+  int coordinator_jobs = -1;
   long long max_points = -1;
   double progress_interval_s = 1.0;
 
-  void run() const {
+  void check_options() const {
+    if (spec.empty()) {
+      throw InputError("SPEC",
+                       "a sweep spec is required: `slipwalk sweep SPEC.toml` (or "
+                       "`slipwalk sweep merge SPEC.toml`)");
+    }
     if (jobs < 0 || jobs > 4096) {
-      throw core::InputError(
-          "--jobs", "must be from 1 to 4096 (0: one per core), got " + std::to_string(jobs));
+      throw InputError("--jobs",
+                       "must be from 1 to 4096 (0: one per core), got " + std::to_string(jobs));
+    }
+    if (coordinator_jobs < -1 || coordinator_jobs > 4096) {
+      throw InputError("--coordinator-jobs",
+                       "must be from 0 to 4096, got " + std::to_string(coordinator_jobs));
     }
     if (max_points < -1) {
-      throw core::InputError("--max-points", "must be non-negative");
+      throw InputError("--max-points", "must be non-negative");
     }
-    // Everything is checked before anything is written, the destination included.
-    core::check_output_dir(data, "--data");
-    const sweeps::PreparedSweep sweep =
-        sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
-    const std::array<std::filesystem::path, 1> inputs{spec};
-    for (const std::filesystem::path& out :
-         {sweeps::csv_path(sweep.spec, data), sweeps::partial_path(sweep.spec, data)}) {
-      core::check_output_path(out, "--data (output " + out.string() + ")", inputs, true);
-    }
+  }
+
+  [[nodiscard]] sweeps::RunOptions run_options() const {
     sweeps::RunOptions options;
     options.data_dir = data;
     options.jobs = static_cast<unsigned>(jobs);
@@ -51,15 +67,104 @@ struct SweepCommand {
     options.max_points = max_points;
     options.progress = &std::cerr;
     options.progress_interval_s = progress_interval_s;
-    const sweeps::RunSummary s = sweeps::run(sweep, options);
+    options.shard = shard.empty() ? sweeps::Shard{} : sweeps::parse_shard(shard, "--shard");
+    return options;
+  }
+
+  [[nodiscard]] sweeps::PreparedSweep prepare() const {
+    return sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
+  }
+
+  /// Everything is checked before anything is written, the destination included.
+  void check_outputs(const sweeps::PreparedSweep& sweep, const sweeps::Shard& s) const {
+    const std::array<std::filesystem::path, 1> inputs{spec};
+    const sweeps::SweepFiles files = sweeps::sweep_files(sweep.spec, data, s);
+    for (const std::filesystem::path& out : {files.csv, files.partial}) {
+      core::check_output_path(out, "--data (output " + out.string() + ")", inputs, true);
+    }
+  }
+
+  static void print(const sweeps::RunSummary& s) {
     if (s.complete) {
       std::cout << s.csv.string() << ": " << s.points << " points (" << s.failed << " failed, "
-                << s.resumed << " resumed) in " << s.wall_s << " s on " << s.jobs << " thread"
-                << (s.jobs == 1 ? "" : "s") << "\n";
+                << s.resumed << " resumed) in " << s.wall_s << " s on ";
+      if (s.ranks > 1) {
+        std::cout << s.ranks << " ranks\n";
+      } else {
+        std::cout << s.jobs << " thread" << (s.jobs == 1 ? "" : "s") << "\n";
+      }
     } else {
       std::cout << s.partial.string() << ": " << (s.resumed + s.computed) << " of " << s.points
                 << " points; continue with --resume\n";
     }
+  }
+
+  void run() const {
+    check_options();
+    if (mpi || sweeps::mpi::launched()) {
+      run_mpi();
+      return;
+    }
+    if (coordinator_jobs >= 0) {
+      throw InputError("--coordinator-jobs", "applies to MPI runs only (under mpirun)");
+    }
+    const sweeps::RunOptions options = run_options();
+    core::check_output_dir(data, "--data");
+    const sweeps::PreparedSweep sweep = prepare();
+    check_outputs(sweep, options.shard);
+    print(sweeps::run(sweep, options));
+  }
+
+  void run_mpi() const {
+    if (!sweeps::mpi::available()) {
+      throw InputError(mpi ? "--mpi" : "MPI launcher",
+                       "this slipwalk was built without MPI support; install Debian's "
+                       "openmpi-bin and libopenmpi-dev (make deps) and rebuild, or run the sweep "
+                       "as shards (--shard k/n, then `slipwalk sweep merge`)");
+    }
+    const sweeps::mpi::Session session;
+    sweeps::mpi::Options options;
+    options.coordinator_jobs = coordinator_jobs;
+    const sweeps::mpi::Setup setup{
+        [&] {
+          options.run = run_options();
+          core::check_output_dir(data, "--data");
+          return prepare();
+        },
+        [&](const sweeps::PreparedSweep& sweep) { check_outputs(sweep, options.run.shard); }};
+    const sweeps::RunSummary s = sweeps::mpi::run_sweep(session, setup, options);
+    if (session.rank() == 0) {
+      print(s);
+    }
+  }
+};
+
+struct MergeCommand {
+  std::string spec;
+  bool quick = false;
+  std::string data = default_data();
+  long long shards = 0;
+  bool keep_shards = false;
+
+  void run() const {
+    if (shards < 0 || shards > 1'000'000) {
+      throw InputError("--shards", "must be from 1 to 1000000, got " + std::to_string(shards));
+    }
+    core::check_output_dir(data, "--data");
+    const sweeps::PreparedSweep sweep =
+        sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
+    const std::array<std::filesystem::path, 1> inputs{spec};
+    const sweeps::SweepFiles files = sweeps::sweep_files(sweep.spec, data);
+    core::check_output_path(files.csv, "--data (output " + files.csv.string() + ")", inputs, true);
+    sweeps::MergeOptions options;
+    options.data_dir = data;
+    options.keep_shards = keep_shards;
+    if (shards > 0) {
+      options.shards = shards;
+    }
+    const sweeps::MergeSummary s = sweeps::merge_shards(sweep, options);
+    std::cout << s.csv.string() << ": " << s.points << " points (" << s.failed
+              << " failed) merged from " << s.shards << " shards\n";
   }
 };
 
@@ -67,23 +172,71 @@ struct SweepCommand {
 
 void add_sweep_command(CLI::App& app) {
   auto cmd = std::make_shared<SweepCommand>();
-  auto* sub = app.add_subcommand("sweep", "run a parameter sweep spec into <data>/<study>/");
-  sub->add_option("SPEC", cmd->spec, "sweep spec (TOML, see sweeps/README.md)")->required();
-  sub->add_option("--jobs,-j", cmd->jobs, "threads (default: one per core)");
-  sub->add_flag("--resume", cmd->resume,
-                "keep the points finished in <name>.partial.csv by an interrupted run");
+  auto* sub = app.add_subcommand(
+      "sweep",
+      "run a parameter sweep spec into <data>/<study>/ (on threads, as one shard of n, or over "
+      "MPI ranks under mpirun); `sweep merge` joins the shards");
+  sub->require_subcommand(0, 1);
+  std::vector<CLI::Option*> own;
+  own.push_back(sub->add_option("SPEC", cmd->spec, "sweep spec (TOML, see sweeps/README.md)"));
+  own.push_back(sub->add_option("--jobs,-j", cmd->jobs,
+                                "threads (per rank under MPI; default: one per core)"));
+  own.push_back(sub->add_flag(
+      "--resume", cmd->resume,
+      "keep the points finished in <name>.partial.csv by an interrupted run (by any number of "
+      "threads or ranks)"));
   sub->add_flag("--quick", cmd->quick, "apply the spec's [quick] overrides (smoke runs)");
   sub->add_option("--data", cmd->data, "data folder (default <source>/data)");
-  sub->add_flag("--no-timing", cmd->no_timing,
-                "write wall_s as 0, so that reruns give byte-identical files");
-  sub->add_option("--max-points", cmd->max_points,
-                  "stop after computing this many points (tests of --resume)")
-      ->group("");  // hidden
-  sub->add_option("--progress-interval", cmd->progress_interval_s,
-                  "seconds between progress lines (tests use 0: every point)")
-      ->check(CLI::NonNegativeNumber)
-      ->group("");  // hidden
-  sub->callback([cmd] { cmd->run(); });
+  own.push_back(sub->add_flag("--no-timing", cmd->no_timing,
+                              "write wall_s as 0, so that reruns give byte-identical files"));
+  own.push_back(sub->add_option("--shard", cmd->shard,
+                                "run the k-th of n shards (k/n; points with id mod n = k - 1) "
+                                "into <name>.shard-k-of-n.csv; join them with `sweep merge`"));
+  own.push_back(sub->add_flag("--mpi", cmd->mpi,
+                              "run over MPI ranks (implied under mpirun or srun); an error if "
+                              "this build has no MPI"));
+  own.push_back(sub->add_option("--coordinator-jobs", cmd->coordinator_jobs,
+                                "MPI: computing threads on rank 0, which also hands out the "
+                                "points (default --jobs; 0: it only coordinates)"));
+  own.push_back(sub->add_option("--max-points", cmd->max_points,
+                                "stop after computing this many points (tests of --resume)")
+                    ->group(""));  // hidden
+  own.push_back(sub->add_option("--progress-interval", cmd->progress_interval_s,
+                                "seconds between progress lines (tests use 0: every point)")
+                    ->check(CLI::NonNegativeNumber)
+                    ->group(""));  // hidden
+
+  auto merge = std::make_shared<MergeCommand>();
+  auto* mrg = sub->add_subcommand(
+      "merge",
+      "join the shards <name>.shard-k-of-n.csv of a spec into <name>.csv, the file a single run "
+      "writes (the shard files are removed unless --keep-shards)");
+  mrg->add_option("SPEC", merge->spec, "the sweep spec the shards ran")->required();
+  mrg->add_flag("--quick", merge->quick, "the shards ran with --quick");
+  mrg->add_option("--data", merge->data, "data folder (default <source>/data)");
+  mrg->add_option("--shards", merge->shards,
+                  "the shard count n (default: the one count found in the data folder)");
+  mrg->add_flag("--keep-shards", merge->keep_shards, "keep the shard files after the merge");
+  // CLI11 runs the subcommand's callback before its parent's: the check comes first here.
+  mrg->callback([merge, own, sub] {
+    for (const CLI::Option* o : own) {
+      if (o->count() > 0) {
+        throw InputError(o->get_name(), "is an option of `slipwalk sweep`, not of `sweep merge`");
+      }
+    }
+    for (const char* name : {"--quick", "--data"}) {
+      if (sub->get_option(name)->count() > 0) {
+        throw InputError(name, "give it after `merge`: `slipwalk sweep merge SPEC " +
+                                   std::string(name) + " ...`");
+      }
+    }
+    merge->run();
+  });
+  sub->callback([cmd, mrg] {
+    if (!mrg->parsed()) {
+      cmd->run();
+    }
+  });
 }
 
 }  // namespace slipwalk::cli

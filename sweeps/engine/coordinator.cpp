@@ -127,6 +127,11 @@ bool Coordinator::exhausted() const {
   return stopping_ || next_ >= pending_.size();
 }
 
+bool Coordinator::stopping() const {
+  const std::lock_guard lock(mutex_);
+  return stopping_;
+}
+
 std::size_t Coordinator::in_flight() const {
   const std::lock_guard lock(mutex_);
   return in_flight_;

@@ -42,6 +42,9 @@ class Coordinator {
 
   /// Nothing left to hand out (all handed out, or stopping).
   [[nodiscard]] bool exhausted() const;
+  /// A point threw or the checkpoint could not be written: the run is ending.
+  [[nodiscard]] bool stopping() const;
+  [[nodiscard]] const std::filesystem::path& checkpoint_path() const { return files_.partial; }
   [[nodiscard]] std::size_t in_flight() const;
   [[nodiscard]] std::size_t pending() const;
 
