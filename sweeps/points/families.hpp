@@ -51,6 +51,8 @@ namespace slipwalk::sweeps::points {
 
 /// The hostile-input campaign against the binary itself (hostile_inputs_kind.cpp).
 [[nodiscard]] std::vector<PointKind> hostile_input_kinds();
+/// Scaling out: noop, scale_out and coordinator_throughput (scale_out.cpp).
+[[nodiscard]] std::vector<PointKind> scale_out_kinds();
 
 /// Every point kind of every family, in the order of families.cpp.
 [[nodiscard]] std::span<const PointKind> all_kinds();

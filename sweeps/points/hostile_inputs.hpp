@@ -129,7 +129,4 @@ struct Tally {
   void add(long long index, const Case& c, const Verdict& v);
 };
 
-/// The path of the running executable (/proc/self/exe), for the point kind inside `slipwalk`.
-[[nodiscard]] std::filesystem::path self_executable();
-
 }  // namespace slipwalk::sweeps::hostile

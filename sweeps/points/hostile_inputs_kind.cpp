@@ -11,6 +11,7 @@
 #include "sweeps/engine/point_reader.hpp"
 #include "sweeps/points/families.hpp"
 #include "sweeps/points/hostile_inputs.hpp"
+#include "sweeps/points/subprocess.hpp"
 
 namespace slipwalk::sweeps::points {
 
@@ -82,7 +83,7 @@ Inputs read_inputs(const Point& point) {
 
 Rows<CampaignRow> run_point(const Point& point) {
   const Inputs in = read_inputs(point);
-  const std::filesystem::path binary = hostile::self_executable();
+  const std::filesystem::path binary = self_executable();
   const std::filesystem::path scratch = std::filesystem::temp_directory_path();
   hostile::Tally tally;
   for (long long i = in.first; i < in.first + in.count; ++i) {

@@ -725,13 +725,4 @@ void Tally::add(long long index, const Case& c, const Verdict& v) {
   }
 }
 
-fs::path self_executable() {
-  std::error_code ec;
-  fs::path p = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) {
-    throw std::runtime_error("hostile inputs: cannot read /proc/self/exe");
-  }
-  return p;
-}
-
 }  // namespace slipwalk::sweeps::hostile
