@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/json_input.hpp"
+#include "core/range.hpp"
 #include "sweeps/engine/mpi/mpi_run.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/point_reader.hpp"
@@ -49,6 +50,11 @@ struct NoopRow {
     return {value("id", &NoopRow::id), value("i", &NoopRow::i)};
   }
 };
+
+/// A noop point's label `i`, 0 … 10^7 (what a spec of many points puts on an axis).
+double noop_label(const Point& p) {
+  return Reader(p, "noop", {"i"}).number("i", 0.0, core::closed(0.0, 1e7));
+}
 
 // ---- running the binary ---------------------------------------------------------------------
 
@@ -237,7 +243,7 @@ ScaleRow run_mode(const ScaleInputs& in, std::string_view mode, const fs::path& 
 Rows<ScaleRow> run_scale(const Point& p) {
   const ScaleInputs in = read_scale(p);
   const Scratch scratch(p.id);
-  const fs::path binary = self_executable();
+  const fs::path binary = slipwalk_binary();
   const PreparedSweep workload = points::prepare(load_spec(in.workload));
   const auto csv_in = [&](const fs::path& data) { return sweep_files(workload.spec, data).csv; };
   Rows<ScaleRow> out;
@@ -364,7 +370,7 @@ Rows<CoordinatorRow> run_coordinator(const Point& p) {
     const fs::path data = scratch.path() / ("data-" + std::to_string(k));
     std::vector<std::string> argv = launcher(in.ranks);
     for (const std::string& a :
-         {self_executable().string(), std::string("sweep"), spec.string(), std::string("--jobs"),
+         {slipwalk_binary().string(), std::string("sweep"), spec.string(), std::string("--jobs"),
           std::to_string(in.jobs), std::string("--coordinator-jobs"), std::string("0"),
           std::string("--no-timing"), std::string("--data"), data.string()}) {
       argv.push_back(a);
@@ -400,10 +406,10 @@ std::vector<PointKind> scale_out_kinds() {
   std::vector<PointKind> kinds;
   kinds.push_back(make_point_kind<NoopRow>(
       "noop", "a point that does nothing (one row with its id and i): the engine's own cost",
-      Timed::kNo, [](const Point& p) { (void)Reader(p, "noop", {"i"}).number("i", 0.0); },
+      Timed::kNo, [](const Point& p) { (void)noop_label(p); },
       [](const Point& p) {
         Rows<NoopRow> out;
-        out.rows.push_back({p.id, Reader(p, "noop", {"i"}).number("i", 0.0)});
+        out.rows.push_back({p.id, noop_label(p)});
         return out;
       }));
   kinds.push_back(make_point_kind<ScaleRow>(

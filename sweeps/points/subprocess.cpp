@@ -26,6 +26,17 @@ std::filesystem::path self_executable() {
   return p;
 }
 
+std::filesystem::path slipwalk_binary() {
+  std::filesystem::path p = self_executable();
+  if (p.filename() != "slipwalk") {
+    throw std::logic_error(
+        "this point kind runs the slipwalk binary as a child and must run "
+        "inside it (`slipwalk sweep`), not in " +
+        p.string());
+  }
+  return p;
+}
+
 pid_t start_child(const std::vector<std::string>& argv, const std::filesystem::path& out,
                   const std::filesystem::path& err) {
   std::vector<std::string> text = argv;

@@ -14,6 +14,10 @@ namespace slipwalk::sweeps::points {
 /// inside it.
 [[nodiscard]] std::filesystem::path self_executable();
 
+/// self_executable() when it is the `slipwalk` binary; throws std::logic_error otherwise (a point
+/// kind that runs the binary as a child, run inside another program such as a test).
+[[nodiscard]] std::filesystem::path slipwalk_binary();
+
 /// Starts `argv` (argv[0]: the program's path) in a process group of its own, stdin from
 /// /dev/null, stdout and stderr to the given files. Throws std::runtime_error when it cannot.
 [[nodiscard]] pid_t start_child(const std::vector<std::string>& argv,
