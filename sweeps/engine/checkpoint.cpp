@@ -189,8 +189,8 @@ Finished compute_point(const PointKind& kind, const Point& point, bool timing) {
   return f;
 }
 
-Checkpoint::Checkpoint(std::filesystem::path path, std::string header, std::string print,
-                       long long points, bool resume)
+Checkpoint::Checkpoint(std::filesystem::path path, const std::string& header,
+                       const std::string& print, long long points, bool resume)
     : path_(std::move(path)) {
   if (resume && std::filesystem::exists(path_)) {
     done_ = read_partial(path_, header, print, points);

@@ -75,8 +75,8 @@ class Checkpoint {
  public:
   /// Reads `path` when `resume` and it exists (throws core::InputError for a checkpoint of
   /// another spec or other columns), then rewrites it with what it kept.
-  Checkpoint(std::filesystem::path path, std::string header, std::string print, long long points,
-             bool resume);
+  Checkpoint(std::filesystem::path path, const std::string& header, const std::string& print,
+             long long points, bool resume);
   Checkpoint(const Checkpoint&) = delete;
   Checkpoint& operator=(const Checkpoint&) = delete;
   ~Checkpoint() = default;

@@ -160,8 +160,9 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
       timing = shard_timing;
       first = false;
     } else if (shard_commit != commit) {
-      throw core::InputError(where, "written by build " + shard_commit + ", shard 1 by " + commit +
-                                        "; rerun the shards with one build");
+      std::string what = "written by build " + shard_commit;
+      what += ", shard 1 by " + commit + "; rerun the shards with one build";
+      throw core::InputError(where, what);
     } else if (shard_timing != timing) {
       throw core::InputError(where, std::string("run ") + (shard_timing ? "with" : "without") +
                                         " timings, shard 1 the other way; rerun it with"

@@ -117,18 +117,20 @@ class Outgoing {
     p.bytes = std::move(bytes);
     MPI_Isend(p.bytes.data(), static_cast<int>(p.bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD,
               &p.request);
-  }
+    // The analyzer's MPI checker follows requests in locals only; these live in sends_ and are
+    // tested in reap() and waited for in wait_all().
+  }  // NOLINT(clang-analyzer-optin.mpi.MPI-Checker)
   /// Frees the buffers of completed sends.
   void reap() {
     for (auto it = sends_.begin(); it != sends_.end();) {
       int done = 0;
-      MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+      MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);  // NOLINT(clang-analyzer-optin.mpi.*)
       it = done != 0 ? sends_.erase(it) : std::next(it);
     }
   }
   void wait_all() {
     for (Pending& p : sends_) {
-      MPI_Wait(&p.request, MPI_STATUS_IGNORE);
+      MPI_Wait(&p.request, MPI_STATUS_IGNORE);  // NOLINT(clang-analyzer-optin.mpi.*)
     }
     sends_.clear();
   }
