@@ -119,7 +119,8 @@ def efficiency(data: Path) -> tuple[dict, dict]:
     for i in range(t.n):
         if mode[i] == "serial" or not ok[i]:
             continue
-        serial = ok & (mode == "serial") & (workload == workload[i]) & (t["repeat"] == t["repeat"][i])
+        serial = (ok & (mode == "serial") & (workload == workload[i])
+                  & (t["repeat"] == t["repeat"][i]))
         if not np.any(serial):
             continue
         s = float(np.median(t["wall_s"][serial]))
@@ -176,6 +177,11 @@ def efficiency(data: Path) -> tuple[dict, dict]:
     v["efficiency_mpi_goal_met"] = (None if v.get("efficiency_mpi") is None
                                     else bool(v["efficiency_mpi"] >= EFFICIENCY_GOAL))
     v["points_per_run"] = float(np.max(t["points"]))
+    # The machine the modes shared: what a wall time and an efficiency are read against.
+    side = c.read_sidecar(t.path)
+    machine = ((side or {}).get("provenance") or {}).get("machine") or {}
+    v["logical_cores"] = machine.get("logical_cores")
+    v["load_average_1min"] = machine.get("load_average_1min")
     return v, draw
 
 
@@ -190,8 +196,10 @@ def coordinator(data: Path) -> tuple[dict, list[dict]]:
     for col in ("points", "ranks", "jobs", "exit_code"):
         if not np.all(np.isfinite(t[col])):
             c.fail(f"{t.path}: column '{col}' must be a number in every row")
-    usable = (t["exit_code"] == 0) & np.isfinite(t["points_per_cpu_s"]) & (t["points_per_cpu_s"] > 0)
-    v: dict = {"coordinator_runs": int(t.n), "coordinator_runs_usable": int(np.count_nonzero(usable))}
+    rate = t["points_per_cpu_s"]
+    usable = (t["exit_code"] == 0) & np.isfinite(rate) & (rate > 0)
+    v: dict = {"coordinator_runs": int(t.n),
+               "coordinator_runs_usable": int(np.count_nonzero(usable))}
     groups = []
     for key in dict.fromkeys(zip(t["points"], t["ranks"], t["jobs"])):
         rows = usable & (t["points"] == key[0]) & (t["ranks"] == key[1]) & (t["jobs"] == key[2])
@@ -207,7 +215,7 @@ def coordinator(data: Path) -> tuple[dict, list[dict]]:
     if not groups:
         why = (f"no successful coordinator run with a CPU time above zero "
                f"({messages(t, ~usable)})")
-        for k in keys:
+        for k in keys + ("us_per_point",):
             v[f"coordinator_{k}"] = None
         v["coordinator_points_per_cpu_s_reason"] = why
         return v, groups
@@ -280,6 +288,8 @@ def table_html(v: dict, groups: list[dict], studies: list[dict]) -> str:
         f"<td>{c.fmt(g['points_per_message'], 3)}</td></tr>" for g in groups) or (
         "<tr><td colspan='7'>no successful run: "
         f"{html.escape(str(v.get('coordinator_points_per_cpu_s_reason', '')))}</td></tr>")
+    cores = (f"a machine of {v['logical_cores']} logical cores" if v.get("logical_cores")
+             else "a machine whose cores the sidecar does not give")
     per_study = []
     for s in studies:
         name = html.escape(s["study"]) + (" (multi-legged)" if s["multilegged"] else "")
@@ -297,10 +307,11 @@ def table_html(v: dict, groups: list[dict], studies: list[dict]) -> str:
 <table class='data'><thead><tr><th>study</th><th>sidecars timed</th><th>sidecars without times</th>
 <th>points timed</th><th>mean point [s]</th><th>R_sat [ranks of 1 thread]</th></tr></thead>
 <tbody>{''.join(per_study)}</tbody></table>
-<p class="small">Medians over the rounds. points / s is limited on this machine by the worker
-ranks sharing its cores; points / coordinator CPU s is the coordinator's own bound, from which
-R_sat = points / CPU s × mean point time (ranks of one thread). Sidecars without point_seconds
-were written before sweeps timed their points.</p>
+<p class="small">Medians over the rounds, on {cores}. points / s is limited on this machine by
+the worker ranks sharing its cores with the coordinator; points / coordinator CPU s is the
+coordinator's own bound, from which R_sat = points / CPU s × mean point time (ranks of one
+thread). Sidecars without point_seconds (written before sweeps timed their points, or not by a
+sweep) are not counted; a shard's sidecar is not counted beside its merged one.</p>
 """
 
 
@@ -335,7 +346,8 @@ def figure(v: dict, draw: dict, studies: list[dict], out: Path) -> None:
                    for _, w, p in rows), default=1.0)
     ax.set_ylim(0, 1.55 * tallest)  # room for the legend above the bars
     ax.set_ylabel("wall time of the sweep [s]")
-    ax.set_title(f"(a) one sweep of {v['points_per_run']:.0f} points, "
+    cores = f" on {v['logical_cores']} cores" if v["logical_cores"] else ""
+    ax.set_title(f"(a) one sweep of {v['points_per_run']:.0f} points{cores}, "
                  f"serial and over {draw['workers']['mpi']} workers")
     ax.legend(loc="upper center", ncol=2, fontsize=9, title_fontsize=9, framealpha=0.9,
               title="median parallel efficiency (serial time ÷ workers × time)")
@@ -351,7 +363,8 @@ def figure(v: dict, draw: dict, studies: list[dict], out: Path) -> None:
         bx.invert_yaxis()
         bx.set_xscale("log")
         for yi, s in zip(y, shown):
-            bx.text(s["rsat"] * 1.1, yi, f"{s['rsat']:,.0f}" if s["rsat"] >= 10 else f"{s['rsat']:.2g}",
+            label = f"{s['rsat']:,.0f}" if s["rsat"] >= 10 else f"{s['rsat']:.2g}"
+            bx.text(s["rsat"] * 1.1, yi, label,
                     va="center", fontsize=9, bbox={"fc": "white", "ec": "none", "pad": 0.5})
         lo = min(min(s["rsat"] for s in shown), RSAT_GOAL) / 3
         hi = max(max(s["rsat"] for s in shown), RSAT_GOAL) * 6
@@ -410,10 +423,9 @@ def main() -> None:
         for k in ("rsat_min_multilegged", "rsat_min_study", "rsat_goal_met"):
             v[k] = None
             v[f"{k}_reason"] = why
-    if timed:
-        low = min(timed, key=lambda st: timed[st]["rsat"])
-        v["rsat_min_all"] = timed[low]["rsat"]
-        v["rsat_min_all_study"] = low
+    low = min(timed, key=lambda st: timed[st]["rsat"]) if timed else None
+    v["rsat_min_all"] = timed[low]["rsat"] if low else None
+    v["rsat_min_all_study"] = low
 
     figure(v, draw, studies, args.out)
     c.atomic_write_text(args.out / f"{NAME}_table.html", table_html(v, groups, studies))

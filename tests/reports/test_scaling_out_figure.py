@@ -75,9 +75,10 @@ def make(data: Path, **efficiency) -> None:
     write(data / "scaling_out" / "efficiency.csv", EFFICIENCY_COLUMNS,
           efficiency_rows(**efficiency))
     write(data / "scaling_out" / "coordinator.csv", COORDINATOR_COLUMNS, coordinator_rows())
-    # this study's own sidecars are not a study's point times
-    (data / "scaling_out" / "efficiency.json").write_text(
-        json.dumps({"point_seconds": {"count": 1, "sum": 1e-9}}))
+    # this study's own sidecar: the machine, and point times that are no study's
+    (data / "scaling_out" / "efficiency.json").write_text(json.dumps(
+        {"point_seconds": {"count": 1, "sum": 1e-9},
+         "provenance": {"machine": {"logical_cores": 2, "load_average_1min": 0.5}}}))
     for study, name, ps in SIDECARS:
         doc = {"study": study, "name": name}
         if ps is not None:
@@ -120,6 +121,7 @@ class ScalingOutFigure(unittest.TestCase):
         self.assertAlmostEqual(self.v["wall_s_serial"], 3.0, places=12)
         self.assertAlmostEqual(self.v["process_wall_s_mpi"], 1.8, places=12)
         self.assertEqual(self.v["rounds"], 3)
+        self.assertEqual(self.v["logical_cores"], 2)
 
     def test_every_mode_wrote_the_serial_bytes(self):
         self.assertTrue(self.v["same_bytes_all"])
