@@ -19,6 +19,10 @@ namespace {
 constexpr std::size_t kMaxMessageBytes = 1024;
 }  // namespace
 
+std::string slipwalk::cli::error_line(const char* what) {
+  return "slipwalk: error: " + slipwalk::core::text_excerpt(what, kMaxMessageBytes) + "\n";
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"slipwalk: multi-legged locomotion with slipping — reproduce, check, extend"};
   app.require_subcommand(1);
@@ -46,11 +50,8 @@ int main(int argc, char** argv) {
     }
     return false;
   };
-  // A message may quote what the user gave (an option's value, a name from a file); it is cut so
-  // that a value of megabytes cannot come back as a message of megabytes.
   const auto report = [](const char* what, int code) {
-    std::cerr << "slipwalk: error: " << slipwalk::core::text_excerpt(what, kMaxMessageBytes)
-              << "\n";
+    std::cerr << slipwalk::cli::error_line(what);
     return code;
   };
   // Under an MPI launcher every rank runs this binary: only `slipwalk sweep` shares the work out

@@ -132,7 +132,25 @@ struct SweepCommand {
           return prepare();
         },
         [&](const sweeps::PreparedSweep& sweep) { check_outputs(sweep, options.run.shard); }};
-    const sweeps::RunSummary s = sweeps::mpi::run_sweep(session, setup, options);
+    // Rank 0 reports an error before any rank ends: a rank that exits non-zero makes the MPI
+    // runtime end the job, and rank 0 with it, perhaps before it has printed.
+    int code = 0;
+    sweeps::RunSummary s;
+    try {
+      s = sweeps::mpi::run_sweep(session, setup, options);
+    } catch (const sweeps::mpi::QuietExit& e) {
+      code = e.code;
+    } catch (const InputError& e) {
+      code = 2;
+      std::cerr << error_line(e.what()) << std::flush;
+    } catch (const std::exception& e) {
+      code = 1;
+      std::cerr << error_line(e.what()) << std::flush;
+    }
+    session.barrier();
+    if (code != 0) {
+      throw sweeps::mpi::QuietExit{code};
+    }
     if (session.rank() == 0) {
       print(s);
     }

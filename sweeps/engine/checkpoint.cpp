@@ -142,7 +142,7 @@ Shard parse_shard(const std::string& text, const std::string& option) {
                                "got '" +
                                text + "'");
   }
-  return {k, n};
+  return {k, n, true};
 }
 
 SweepFiles sweep_files(const Spec& spec, const std::filesystem::path& data, const Shard& shard) {

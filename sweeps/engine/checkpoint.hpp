@@ -26,11 +26,13 @@ struct PreparedSweep;
 
 /// The k-th of n deterministic shards of a sweep (`--shard k/n`, 1 ≤ k ≤ n): the points whose
 /// id ≡ k − 1 (mod n). Interleaved rather than in blocks, so that a grid whose cost grows along
-/// an axis spreads that cost over every shard. {1, 1} is the whole sweep.
+/// an axis spreads that cost over every shard. The default is the whole sweep, not a shard; a
+/// shard 1/1 is a shard (its own files, merged like any), so that a job array of one task works.
 struct Shard {
   long long index = 1;
   long long count = 1;
-  [[nodiscard]] bool whole() const { return count == 1; }
+  bool split = false;  ///< a shard (its own files); false: the whole sweep
+  [[nodiscard]] bool whole() const { return !split; }
   [[nodiscard]] bool holds(long long id) const { return id % count == index - 1; }
   /// "k/n"
   [[nodiscard]] std::string text() const;

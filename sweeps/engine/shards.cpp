@@ -116,7 +116,7 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
   // Every shard must be there and finished before anything is read.
   std::string missing;
   for (long long k = 1; k <= n; ++k) {
-    const SweepFiles f = sweep_files(spec, options.data_dir, {k, n});
+    const SweepFiles f = sweep_files(spec, options.data_dir, {k, n, true});
     if (!fs::is_regular_file(f.csv) || !fs::is_regular_file(f.sidecar)) {
       missing += "\n  shard " + std::to_string(k) + "/" + std::to_string(n) + ": " +
                  (fs::exists(f.partial)
@@ -142,7 +142,7 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
   json seconds_max;
   long long seconds_count = 0;
   for (long long k = 1; k <= n; ++k) {
-    const Shard shard{k, n};
+    const Shard shard{k, n, true};
     const SweepFiles f = sweep_files(spec, options.data_dir, shard);
     const std::string where = f.sidecar.string();
     const json side = core::parse_json(core::read_json_text(f.sidecar), where);
@@ -218,7 +218,7 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
 
   if (!options.keep_shards) {
     for (long long k = 1; k <= n; ++k) {
-      const SweepFiles f = sweep_files(spec, options.data_dir, {k, n});
+      const SweepFiles f = sweep_files(spec, options.data_dir, {k, n, true});
       std::error_code ec;
       fs::remove(f.csv, ec);
       fs::remove(f.sidecar, ec);

@@ -522,6 +522,8 @@ Session::Session() {
 
 Session::~Session() { MPI_Finalize(); }
 
+void Session::barrier() const { MPI_Barrier(MPI_COMM_WORLD); }
+
 RunSummary run_sweep(const Session& session, const Setup& setup, const Options& options) {
   gsl_set_error_handler_off();  // a GSL failure is a failed point, never an abort()
   std::optional<PreparedSweep> sweep;

@@ -46,6 +46,8 @@ class Session {
   ~Session();
   [[nodiscard]] int rank() const { return rank_; }
   [[nodiscard]] int size() const { return size_; }
+  /// Waits until every rank has come here.
+  void barrier() const;
 
  private:
   int rank_ = 0;

@@ -18,6 +18,7 @@ bool available() { return false; }
 
 Session::Session() { unavailable(); }
 Session::~Session() = default;
+void Session::barrier() const {}
 
 RunSummary run_sweep(const Session& /*session*/, const Setup& /*setup*/,
                      const Options& /*options*/) {
