@@ -67,7 +67,15 @@ std::array<char, 2048> g_farewell{};
 std::size_t g_farewell_size = 0;
 int g_farewell_code = 1;
 
+std::atomic<bool> g_handling{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
 extern "C" void unlink_temporaries_and_reraise(int sig) {
+  // A second signal (the launcher's SIGTERM after its SIGINT, or one on another thread) while the
+  // first is handled: the first finishes the job, and says its farewell once.
+  if (g_handling.exchange(true)) {
+    return;
+  }
   for (Slot& slot : g_slots) {
     if (slot.state.load(std::memory_order_acquire) == 2) {
       ::unlink(slot.path.data());

@@ -56,9 +56,24 @@ int main(int argc, char** argv) {
   };
   // Under an MPI launcher every rank runs this binary: only `slipwalk sweep` shares the work out
   // (and refuses when built without MPI); anything else would run once per rank, each writing the
-  // same files.
-  if (slipwalk::sweeps::mpi::launched() && (argc < 2 || std::string(argv[1]) != "sweep")) {
-    return report("MPI launcher: only `slipwalk sweep` runs under mpirun or srun", 2);
+  // same files. The refusal is printed by rank 0 alone.
+  const auto merging = [&] {
+    for (int i = 2; i < argc; ++i) {
+      if (std::string(argv[i]) == "merge") {
+        return true;
+      }
+    }
+    return false;
+  };
+  if (slipwalk::sweeps::mpi::launched() &&
+      (argc < 3 || std::string(argv[1]) != "sweep" || merging())) {
+    if (slipwalk::sweeps::mpi::launched_rank() > 0) {
+      return 2;
+    }
+    return report(
+        "MPI launcher: only `slipwalk sweep SPEC` runs under mpirun or srun (not "
+        "`sweep merge` or another command, which would run once per rank)",
+        2);
   }
   try {
     app.parse(argc, argv);

@@ -74,8 +74,10 @@ std::mutex& timed_points_mutex() {
   return m;
 }
 
+std::string timing_line(bool timing) { return std::string("#timing,") + (timing ? "1" : "0"); }
+
 FinishedPoints read_partial(const std::filesystem::path& path, const std::string& header,
-                            const std::string& print, long long n_points) {
+                            const std::string& print, bool timing, long long n_points) {
   const std::string text = core::read_input_file(path, "a sweep checkpoint", kMaxCheckpointBytes);
   std::vector<std::string> lines;
   std::size_t start = 0;
@@ -92,9 +94,20 @@ FinishedPoints read_partial(const std::filesystem::path& path, const std::string
                            "the checkpoint was written for a different spec (its points differ); "
                            "rerun without --resume to start afresh");
   }
+  if (lines.size() < 3 || lines[2].rfind("#timing,", 0) != 0) {
+    throw core::InputError(where,
+                           "the checkpoint was written by an older slipwalk; rerun without "
+                           "--resume to start afresh");
+  }
+  if (lines[2] != timing_line(timing)) {
+    throw core::InputError(where, std::string("the checkpoint was written ") +
+                                      (timing ? "with --no-timing" : "with timings") +
+                                      "; resume it with the same setting, or rerun without "
+                                      "--resume to start afresh");
+  }
   FinishedPoints done;
   std::string rows;
-  for (std::size_t i = 2; i < lines.size(); ++i) {
+  for (std::size_t i = 3; i < lines.size(); ++i) {
     const std::string& line = lines[i];
     if (line.rfind("#done,", 0) != 0) {
       rows += line + '\n';
@@ -190,17 +203,17 @@ Finished compute_point(const PointKind& kind, const Point& point, bool timing) {
 }
 
 Checkpoint::Checkpoint(std::filesystem::path path, const std::string& header,
-                       const std::string& print, long long points, bool resume)
+                       const std::string& print, bool timing, long long points, bool resume)
     : path_(std::move(path)) {
   if (resume && std::filesystem::exists(path_)) {
-    done_ = read_partial(path_, header, print, points);
+    done_ = read_partial(path_, header, print, timing, points);
   }
   resumed_ = static_cast<long long>(done_.size());
   const std::filesystem::path folder = path_.parent_path();
   std::error_code ec;
   folder_existed_ = folder.empty() || std::filesystem::exists(folder, ec);
   // Rewritten with what was kept: a torn last point of a killed run is gone from the file too.
-  std::string text = header + "\n#spec," + print + "\n";
+  std::string text = header + "\n#spec," + print + "\n" + timing_line(timing) + "\n";
   for (const auto& [id, f] : done_) {
     append_point(text, id, f);
   }

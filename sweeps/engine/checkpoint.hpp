@@ -4,8 +4,9 @@
 // the sorted result CSV with its provenance sidecar. The threaded runner, the MPI coordinator
 // and `slipwalk sweep merge` all write through here, which is why their CSVs are the same bytes.
 //
-// The checkpoint `<stem>.partial.csv`: the CSV header, `#spec,<fingerprint>`, then per finished
-// point its rows and a `#done,<id>,<failed>,<message>` line. A point counts only once its #done
+// The checkpoint `<stem>.partial.csv`: the CSV header, `#spec,<fingerprint>`, `#timing,<0|1>`
+// (whether timing columns hold times: a resume keeps the setting), then per finished point its
+// rows and a `#done,<id>,<failed>,<message>` line. A point counts only once its #done
 // line is complete, so a run killed in the middle of a write loses at most that point. The
 // format does not depend on who wrote it: a threaded run resumes an MPI run's checkpoint and
 // the other way round.
@@ -76,9 +77,10 @@ using FinishedPoints = std::map<long long, Finished>;
 class Checkpoint {
  public:
   /// Reads `path` when `resume` and it exists (throws core::InputError for a checkpoint of
-  /// another spec or other columns), then rewrites it with what it kept.
+  /// another spec, other columns or the other timing setting), then rewrites it with what it
+  /// kept.
   Checkpoint(std::filesystem::path path, const std::string& header, const std::string& print,
-             long long points, bool resume);
+             bool timing, long long points, bool resume);
   Checkpoint(const Checkpoint&) = delete;
   Checkpoint& operator=(const Checkpoint&) = delete;
   ~Checkpoint() = default;

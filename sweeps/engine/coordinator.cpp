@@ -30,7 +30,7 @@ Coordinator::Coordinator(const PreparedSweep& sweep, const RunOptions& options)
              (options.shard.whole() ? std::string() : " shard " + options.shard.text()) + "] "),
       header_(header_of(sweep)),
       files_(sweep_files(sweep.spec, options.data_dir, options.shard)),
-      checkpoint_(files_.partial, header_, fingerprint(sweep),
+      checkpoint_(files_.partial, header_, fingerprint(sweep), options.timing,
                   static_cast<long long>(sweep.points.size()), options.resume),
       cap_(sweep.kind->timed == Timed::kYes ? 1 : sweep.points.size() + 1),
       start_(Clock::now()),

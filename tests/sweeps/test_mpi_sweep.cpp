@@ -310,8 +310,9 @@ TEST_F(MpiSweep, AKilledRankLeavesACheckpointThatResumes) {
   EXPECT_EQ(occurrences(errors, "stopped by a signal"), 1) << errors;
   EXPECT_NE(errors.find("[test/mpi_killed_rank] stopped by a signal (a rank died, or the job was "
                         "cancelled); the points finished so far are kept in " +
-                        partial.string() + "; continue with `slipwalk sweep " + spec.string() +
-                        " --resume` on any number of ranks"),
+                        partial.string() +
+                        "; run the same command again with --resume (on any number of ranks or "
+                        "threads)"),
             std::string::npos)
       << errors;
   // The checkpoint holds what was done, and no result was written.
@@ -338,12 +339,16 @@ TEST_F(MpiSweep, ACoordinatorThatOnlyCoordinatesGivesTheSameBytes) {
   EXPECT_EQ(side.at("coordinator").at("remote_points"), 54);
 }
 
-TEST_F(MpiSweep, AnotherSubcommandUnderMpirunIsRefused) {
+TEST_F(MpiSweep, AnotherSubcommandOrAMergeUnderMpirunIsRefusedOnce) {
   const fs::path data = dir_ / "data";
-  const CommandResult r = run_mpi(2, {"run", spec_.string(), "--data", data.string()});
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("only `slipwalk sweep` runs under mpirun"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(data));
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", spec_.string(), "--data", data.string()},
+        std::vector<std::string>{"sweep", "merge", spec_.string(), "--data", data.string()}}) {
+    const CommandResult r = run_mpi(2, args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(occurrences(r.err, "only `slipwalk sweep SPEC` runs under mpirun"), 1) << r.err;
+    EXPECT_FALSE(fs::exists(data));
+  }
 }
 
 // Needs no MPI: the options that only an MPI run takes, without one.

@@ -188,6 +188,31 @@ TEST(Runner, ResumeWithTimingDiffersOnlyInWallTime) {
   EXPECT_EQ(without_wall(read_text(run(sweep, o).csv)), without_wall(reference));
 }
 
+TEST(Runner, ResumeRefusesACheckpointOfTheOtherTimingSetting) {
+  // Resumed rows keep the timings they were written with: a --no-timing result must not hold
+  // timed rows, nor a timed result zeros.
+  const PreparedSweep sweep = prepared();
+  for (const bool first : {true, false}) {
+    const ScratchDir d;
+    RunOptions o = options(d.path(), 2, first);
+    o.max_points = 10;
+    (void)run(sweep, o);
+    o.max_points = -1;
+    o.resume = true;
+    o.timing = !first;
+    try {
+      (void)run(sweep, o);
+      ADD_FAILURE() << "a checkpoint of the other timing setting was resumed";
+    } catch (const core::InputError& e) {
+      EXPECT_NE(
+          std::string(e.what()).find(first ? "written with timings" : "written with --no-timing"),
+          std::string::npos)
+          << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(csv_path(sweep.spec, d.path())));
+  }
+}
+
 TEST(Runner, WithoutResumeACheckpointIsDiscarded) {
   const PreparedSweep sweep = prepared();
   const ScratchDir d;

@@ -17,4 +17,18 @@ bool launched() {
   return false;
 }
 
+int launched_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"}) {
+    const char* value = std::getenv(name);  // NOLINT(concurrency-mt-unsafe): read before threads
+    if (value != nullptr) {
+      char* end = nullptr;
+      const long rank = std::strtol(value, &end, 10);
+      return end != value && *end == '\0' && rank >= 0 && rank < 1'000'000'000
+                 ? static_cast<int>(rank)
+                 : -1;
+    }
+  }
+  return -1;
+}
+
 }  // namespace slipwalk::sweeps::mpi

@@ -566,8 +566,8 @@ RunSummary run_sweep(const Session& session, const Setup& setup, const Options& 
       "slipwalk: error: [" + sweep->spec.study + "/" + sweep->spec.name +
           "] stopped by a signal (a rank died, or the job was cancelled); the points finished "
           "so far are kept in " +
-          coordinator->checkpoint_path().string() + "; continue with `slipwalk sweep " +
-          sweep->spec.path + " --resume` on any number of ranks",
+          coordinator->checkpoint_path().string() +
+          "; run the same command again with --resume (on any number of ranks or threads)",
       1);
   int code = 0;
   std::exception_ptr error;

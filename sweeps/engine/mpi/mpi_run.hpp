@@ -35,6 +35,9 @@ namespace slipwalk::sweeps::mpi {
 /// Whether this process was started by an MPI launcher (mpirun, mpiexec, srun): its environment
 /// names a world size or rank (OMPI_COMM_WORLD_SIZE, PMIX_RANK, PMI_RANK, PMI_SIZE).
 [[nodiscard]] bool launched();
+/// This process's rank as its launcher's environment says it (OMPI_COMM_WORLD_RANK, PMIX_RANK,
+/// PMI_RANK), before MPI is initialised; -1 when none says it.
+[[nodiscard]] int launched_rank();
 
 /// A process's part in an MPI job: MPI_Init_thread (funneled) on construction, MPI_Finalize on
 /// destruction. Throws core::InputError when MPI is unavailable or gives no funneled threading.
