@@ -207,9 +207,10 @@ void add_sweep_command(CLI::App& app) {
   sub->add_option("--data", cmd->data, "data folder (default <source>/data)");
   own.push_back(sub->add_flag("--no-timing", cmd->no_timing,
                               "write wall_s as 0, so that reruns give byte-identical files"));
-  own.push_back(sub->add_option("--shard", cmd->shard,
-                                "run the k-th of n shards (k/n; points with id mod n = k - 1) "
-                                "into <name>.shard-k-of-n.csv; join them with `sweep merge`"));
+  own.push_back(sub->add_option(
+      "--shard", cmd->shard,
+      "run the k-th of n shards (k/n; the ids dealt in turn in a fixed shuffled order) "
+      "into <name>.shard-k-of-n.csv; join them with `sweep merge`"));
   own.push_back(sub->add_flag("--mpi", cmd->mpi,
                               "run over MPI ranks (implied under mpirun or srun); an error if "
                               "this build has no MPI"));

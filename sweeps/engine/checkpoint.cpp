@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/input_file.hpp"
 #include "core/provenance.hpp"
+#include "sweeps/engine/random.hpp"
 #include "sweeps/engine/runner.hpp"
 #include "sweeps/engine/timing.hpp"
 
@@ -139,6 +140,24 @@ void append_point(std::string& out, long long id, const Finished& f) {
 }
 
 }  // namespace
+
+std::vector<char> shard_members(std::size_t points, const Shard& shard) {
+  if (shard.whole()) {
+    return std::vector<char>(points, 1);
+  }
+  std::vector<std::pair<double, std::size_t>> order(points);
+  for (std::size_t id = 0; id < points; ++id) {
+    order[id] = {Random(1, id).uniform(), id};
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<char> member(points, 0);
+  const auto n = static_cast<std::size_t>(shard.count);
+  for (std::size_t position = static_cast<std::size_t>(shard.index - 1); position < points;
+       position += n) {
+    member[order[position].second] = 1;
+  }
+  return member;
+}
 
 std::string Shard::text() const { return std::to_string(index) + "/" + std::to_string(count); }
 
@@ -286,8 +305,9 @@ nlohmann::json result_sidecar(const PreparedSweep& sweep, const Shard& shard,
     }
   }
   nlohmann::json listed = nlohmann::json::array();
+  const std::vector<char> member = shard_members(sweep.points.size(), shard);
   for (const Point& p : sweep.points) {
-    if (shard.holds(p.id)) {
+    if (member[static_cast<std::size_t>(p.id)] != 0) {
       listed.push_back(p.to_json());
     }
   }

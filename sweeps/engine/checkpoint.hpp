@@ -25,19 +25,25 @@ namespace slipwalk::sweeps {
 
 struct PreparedSweep;
 
-/// The k-th of n deterministic shards of a sweep (`--shard k/n`, 1 ≤ k ≤ n): the points whose
-/// id ≡ k − 1 (mod n). Interleaved rather than in blocks, so that a grid whose cost grows along
-/// an axis spreads that cost over every shard. The default is the whole sweep, not a shard; a
-/// shard 1/1 is a shard (its own files, merged like any), so that a job array of one task works.
+/// The k-th of n deterministic shards of a sweep (`--shard k/n`, 1 ≤ k ≤ n). The points are dealt
+/// round-robin in a fixed pseudo-random order of their ids (shard_members), so shards differ in
+/// size by at most one point and none is made of one value of an axis: dealt in id order, a grid
+/// whose last axis has n values (say a cheap and a costly method) would give each shard one of
+/// them. The default is the whole sweep, not a shard; a shard 1/1 is a shard (its own files,
+/// merged like any), so that a job array of one task works.
 struct Shard {
   long long index = 1;
   long long count = 1;
   bool split = false;  ///< a shard (its own files); false: the whole sweep
   [[nodiscard]] bool whole() const { return !split; }
-  [[nodiscard]] bool holds(long long id) const { return id % count == index - 1; }
   /// "k/n"
   [[nodiscard]] std::string text() const;
 };
+
+/// Which of the ids 0 … points − 1 the shard holds: the ids are ordered by SplitMix64 of the id
+/// (random.hpp; the same on every platform) and dealt to shards 1, 2, …, n, 1, 2, … in that
+/// order. Every id for the whole sweep.
+[[nodiscard]] std::vector<char> shard_members(std::size_t points, const Shard& shard);
 
 /// Parses "k/n" (1 ≤ k ≤ n ≤ 1,000,000); throws core::InputError naming `option`.
 [[nodiscard]] Shard parse_shard(const std::string& text, const std::string& option);

@@ -35,10 +35,12 @@ Coordinator::Coordinator(const PreparedSweep& sweep, const RunOptions& options)
       cap_(sweep.kind->timed == Timed::kYes ? 1 : sweep.points.size() + 1),
       start_(Clock::now()),
       last_progress_(start_) {
+  const std::vector<char> member = shard_members(sweep.points.size(), options.shard);
   for (std::size_t i = 0; i < sweep.points.size(); ++i) {
     const long long id = sweep.points[i].id;
-    total_ += options.shard.holds(id) ? 1 : 0;
-    if (options.shard.holds(id) && checkpoint_.done().find(id) == checkpoint_.done().end()) {
+    const bool mine = member[static_cast<std::size_t>(id)] != 0;
+    total_ += mine ? 1 : 0;
+    if (mine && checkpoint_.done().find(id) == checkpoint_.done().end()) {
       pending_.push_back(i);
     }
   }

@@ -70,7 +70,7 @@ long long shard_count(const PreparedSweep& sweep, const MergeOptions& options) {
 
 /// One shard's points from its CSV, each row given to the point its id names.
 void read_rows(const fs::path& csv, const std::string& header, const Shard& shard,
-               FinishedPoints& done) {
+               const std::vector<char>& member, FinishedPoints& done) {
   const std::string text = core::read_input_file(csv, "a shard's CSV", kMaxShardBytes);
   std::size_t start = 0;
   long long line_no = 0;
@@ -95,8 +95,8 @@ void read_rows(const fs::path& csv, const std::string& header, const Shard& shar
       ++digits;
     }
     const long long id = digits > 0 ? std::stoll(std::string(line.substr(0, digits))) : -1;
-    if (digits == 0 || digits >= line.size() || line[digits] != ',' || !shard.holds(id) ||
-        done.find(id) == done.end()) {
+    if (digits == 0 || digits >= line.size() || line[digits] != ',' || id < 0 ||
+        id >= static_cast<long long>(member.size()) || member[static_cast<std::size_t>(id)] == 0) {
       throw core::InputError(
           csv.string() + ":" + std::to_string(line_no),
           "expected a row of a point of shard " + shard.text() + " (its id first)");
@@ -169,21 +169,23 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
                                         " --no-timing set alike");
     }
     // The shard's points, failed ones with their messages, then their rows.
+    const std::vector<char> member = shard_members(sweep.points.size(), shard);
     for (const Point& p : sweep.points) {
-      if (shard.holds(p.id)) {
+      if (member[static_cast<std::size_t>(p.id)] != 0) {
         done[p.id] = Finished{};
       }
     }
     for (const json& failed : side.value("failed_points", json::array())) {
       const long long id = failed.value("id", -1LL);
-      if (!shard.holds(id) || done.find(id) == done.end()) {
+      if (id < 0 || id >= static_cast<long long>(member.size()) ||
+          member[static_cast<std::size_t>(id)] == 0) {
         throw core::InputError(where, "failed_points names point " + std::to_string(id) +
                                           ", which is not in shard " + shard.text());
       }
       done[id].failed = true;
       done[id].message = failed.value("message", std::string());
     }
-    read_rows(f.csv, header, shard, done);
+    read_rows(f.csv, header, shard, member, done);
     resumed += side.value("resumed_point_count", 0LL);
     wall_s = std::max(wall_s, side.value("wall_s", 0.0));
     const json seconds = side.value("point_seconds", json::object());

@@ -115,10 +115,12 @@ TEST(Shards, EveryPointIsInExactlyOneShardAndTheMergeIsTheThreadedRun) {
       ASSERT_TRUE(s.complete);
       const std::multiset<long long> ids = row_ids(read_text(s.csv));
       EXPECT_EQ(s.points, static_cast<long long>(ids.size())) << k << "/" << n;
-      // The shard's count is that of the ids ≡ k − 1 (mod n) below 54.
-      EXPECT_EQ(s.points, k <= kPoints ? (kPoints - k) / n + 1 : 0) << k << "/" << n;
+      // Dealt round-robin: the shards' sizes differ by at most one point.
+      EXPECT_EQ(s.points, k <= kPoints % n ? kPoints / n + 1 : kPoints / n) << k << "/" << n;
+      // The shard's ids are those shard_members names.
+      const std::vector<char> member = shard_members(kPoints, {k, n, true});
       for (const long long id : ids) {
-        EXPECT_EQ(id % n, k - 1) << "point " << id << " in shard " << k << "/" << n;
+        EXPECT_EQ(member[static_cast<std::size_t>(id)], 1) << "point " << id << " in " << k;
       }
       seen.insert(ids.begin(), ids.end());
     }
@@ -131,6 +133,24 @@ TEST(Shards, EveryPointIsInExactlyOneShardAndTheMergeIsTheThreadedRun) {
     // The shard files are gone: only the result and its sidecar are left.
     EXPECT_EQ(files_under(d.path()),
               (std::vector<std::string>{"test/mixed.csv", "test/mixed.json"}));
+  }
+}
+
+TEST(Shards, NoShardIsMadeOfOneValueOfTheLastAxis) {
+  // Dealt in id order, 2 shards of a spec whose last axis has 2 values would each get one value
+  // (the mixed spec's last axis is the method: one shard would get every closed form).
+  const PreparedSweep sweep = prepared();
+  for (const long long n : {2LL, 3LL}) {
+    for (long long k = 1; k <= n; ++k) {
+      const std::vector<char> member = shard_members(sweep.points.size(), {k, n, true});
+      std::set<std::string> methods;
+      for (const Point& p : sweep.points) {
+        if (member[static_cast<std::size_t>(p.id)] != 0) {
+          methods.insert(p.find("method")->text());
+        }
+      }
+      EXPECT_EQ(methods.size(), 3U) << k << "/" << n;
+    }
   }
 }
 

@@ -264,6 +264,18 @@ RunSummary coordinate(const Session& session, const PreparedSweep& sweep, Coordi
   const auto all_finished = [&] {
     return std::all_of(ranks.begin(), ranks.end(), [](const RemoteRank& r) { return r.finished; });
   };
+  // The most points a rank may hold (queued or running): its threads, and its threads' part of
+  // half of what is left to hand out (guided self-scheduling). A rank that asks for many cheap
+  // points cannot take the costly ones the others would have shared, and at the end every rank
+  // holds no more than it is computing.
+  const auto share = [&](const RemoteRank& r) {
+    std::size_t threads = own;
+    for (std::size_t k = 1; k < ranks.size(); ++k) {
+      threads += std::max(1U, ranks[k].threads);
+    }
+    const std::size_t mine = std::max(1U, r.threads);
+    return mine + mine * coordinator.pending() / (2 * std::max<std::size_t>(1, threads));
+  };
   while (!all_finished()) {
     bool busy = false;
     while (auto message = receive(MPI_ANY_SOURCE, kResults)) {
@@ -298,8 +310,9 @@ RunSummary coordinate(const Session& session, const PreparedSweep& sweep, Coordi
         outgoing.send(std::string(), static_cast<int>(k), kWork);  // empty: stop
         r.stop_sent = true;
         busy = true;
-      } else if (r.owed > 0) {
-        const std::vector<std::size_t> work = coordinator.take_now(r.owed);
+      } else if (r.owed > 0 && r.outstanding < share(r)) {
+        const std::vector<std::size_t> work =
+            coordinator.take_now(std::min(r.owed, share(r) - r.outstanding));
         if (!work.empty()) {
           std::string bytes;
           for (const std::size_t i : work) {

@@ -7,6 +7,10 @@
 // they are computed by the same code), the checkpoint is the same format, so a run killed on R
 // ranks resumes on any number of ranks or threads.
 //
+// A rank holds at most its threads plus its threads' part of half the points not yet handed out
+// (guided self-scheduling), so that a rank asking for many cheap points cannot hoard the costly
+// ones, and at the end every rank holds no more than it is computing.
+//
 // Messages (all non-blocking sends, so that no two ranks can wait on each other):
 //   rank r -> 0, tag kResults: the points r finished since its last message (index, outcome,
 //     rows, message, seconds), how many more points it wants, and whether it is its last;
