@@ -215,10 +215,15 @@ def coordinator(data: Path) -> tuple[dict, list[dict]]:
     if not groups:
         why = (f"no successful coordinator run with a CPU time above zero "
                f"({messages(t, ~usable)})")
-        for k in keys + ("us_per_point",):
+        for k in keys + ("us_per_point", "messages_per_cpu_s"):
             v[f"coordinator_{k}"] = None
         v["coordinator_points_per_cpu_s_reason"] = why
         return v, groups
+    # Points slower than the coordinator come back one to a message (nothing to batch). Every
+    # message of a run cost at most cpu_s / messages, its points included, so the largest
+    # messages per CPU second of any run bounds the rate of one-point messages from below.
+    per_message = t["messages"][usable] / t["coordinator_cpu_s"][usable]
+    v["coordinator_messages_per_cpu_s"] = float(np.max(per_message))
     # The bound on the ranks one coordinator feeds: its slowest configuration.
     worst = min(groups, key=lambda g: g["points_per_cpu_s"])
     for k in keys:
@@ -423,6 +428,11 @@ def main() -> None:
         for k in ("rsat_min_multilegged", "rsat_min_study", "rsat_goal_met"):
             v[k] = None
             v[f"{k}_reason"] = why
+    # The same with one point to a message (no batching): the conservative bound.
+    one = v.get("coordinator_messages_per_cpu_s")
+    v["rsat_min_multilegged_unbatched"] = (
+        one * timed[v["rsat_min_study"]]["mean_s"] / THREADS_PER_RANK
+        if one is not None and v.get("rsat_min_study") else None)
     low = min(timed, key=lambda st: timed[st]["rsat"]) if timed else None
     v["rsat_min_all"] = timed[low]["rsat"] if low else None
     v["rsat_min_all_study"] = low
