@@ -70,14 +70,11 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-/// Runs SLIPWALK_BINARY with `args` (each quoted), capturing stdout and stderr.
-inline CommandResult run_slipwalk(const std::vector<std::string>& args) {
+/// Runs a shell command line (its arguments already quoted), stdin from /dev/null, capturing
+/// stdout and stderr.
+inline CommandResult run_command_line(const std::string& line) {
   const ScratchDir capture;
-  std::string command = shell_quote(SLIPWALK_BINARY);
-  for (const auto& a : args) {
-    command += ' ';
-    command += shell_quote(a);
-  }
+  std::string command = line;
   command.append(" >").append(shell_quote((capture / "out").string()));
   command.append(" 2>").append(shell_quote((capture / "err").string()));
   command.append(" </dev/null");
@@ -87,6 +84,16 @@ inline CommandResult run_slipwalk(const std::vector<std::string>& args) {
   r.out = read_text(capture / "out");
   r.err = read_text(capture / "err");
   return r;
+}
+
+/// Runs SLIPWALK_BINARY with `args` (each quoted), capturing stdout and stderr.
+inline CommandResult run_slipwalk(const std::vector<std::string>& args) {
+  std::string command = shell_quote(SLIPWALK_BINARY);
+  for (const auto& a : args) {
+    command += ' ';
+    command += shell_quote(a);
+  }
+  return run_command_line(command);
 }
 
 /// Files in a folder (recursively), relative paths, sorted; empty if it does not exist.

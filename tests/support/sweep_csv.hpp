@@ -1,6 +1,7 @@
 #pragma once
-// Shared by the tests of shards and MPI sweeps: a sweep's CSV without the columns its kind marks
-// as timings (which alone may differ between two runs with timing on), and the ids of its rows.
+// Shared by the tests of shards and MPI sweeps: their spec, a sweep's CSV without the columns its
+// kind marks as timings (which alone may differ between two runs with timing on), and the ids of
+// its rows.
 #include <cstddef>
 #include <set>
 #include <sstream>
@@ -10,6 +11,15 @@
 #include "sweeps/engine/point_kind.hpp"
 
 namespace slipwalk::test_support {
+
+/// 2 × 9 × 3 = 54 points of study "test", name "mixed": closed forms, the analytic stroke map
+/// and CVODE, so that points differ in cost as in real sweeps.
+inline std::string mixed_spec(const std::string& description) {
+  return "study = \"test\"\nname = \"mixed\"\nkind = \"inchworm_vss\"\ndescription = \"" +
+         description +
+         "\"\n[params]\nrtol = 1e-9\n[axes]\nmu = [1.0, 0.2]\nF_frac = { linspace = [0.05, "
+         "1.0], n = 9 }\nmethod = [\"exact\", \"analytic\", \"cvode\"]\n";
+}
 
 /// The cells of one CSV line, split at every comma: the tests' specs write no quoted cells.
 inline std::vector<std::string> csv_cells(const std::string& line) {

@@ -38,18 +38,7 @@ using testing::ScratchDir;
 using testing::shell_quote;
 using testing::write_text;
 
-// 2 × 9 × 3 = 54 points, a mix of closed forms, the analytic stroke map and CVODE.
-const std::string kSpec = R"(study = "test"
-name = "mixed"
-kind = "inchworm_vss"
-description = "MPI test"
-[params]
-rtol = 1e-9
-[axes]
-mu = [1.0, 0.2]
-F_frac = { linspace = [0.05, 1.0], n = 9 }
-method = ["exact", "analytic", "cvode"]
-)";
+const std::string kSpec = test_support::mixed_spec("MPI test");
 
 // Slow enough (about 1 s on one thread) for a rank to be killed while points remain.
 const std::string kSlowSpec = R"(study = "test"
@@ -91,17 +80,7 @@ std::string mpirun_command(int ranks, const std::vector<std::string>& args) {
 
 /// Runs `slipwalk args` on `ranks` MPI ranks, capturing mpirun's stdout, stderr and exit code.
 CommandResult run_mpi(int ranks, const std::vector<std::string>& args) {
-  const ScratchDir capture;
-  std::string command = mpirun_command(ranks, args);
-  command.append(" >").append(shell_quote((capture / "out").string()));
-  command.append(" 2>").append(shell_quote((capture / "err").string()));
-  command.append(" </dev/null");
-  const int status = std::system(command.c_str());
-  CommandResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_text(capture / "out");
-  r.err = read_text(capture / "err");
-  return r;
+  return testing::run_command_line(mpirun_command(ranks, args));
 }
 
 long long occurrences(const std::string& text, const std::string& part) {

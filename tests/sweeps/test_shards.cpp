@@ -32,18 +32,7 @@ using testing::run_slipwalk;
 using testing::ScratchDir;
 using testing::write_text;
 
-// 2 × 9 × 3 = 54 points: closed forms, the analytic stroke map and CVODE, each a row.
-const std::string kSpec = R"(study = "test"
-name = "mixed"
-kind = "inchworm_vss"
-description = "shards test"
-[params]
-rtol = 1e-9
-[axes]
-mu = [1.0, 0.2]
-F_frac = { linspace = [0.05, 1.0], n = 9 }
-method = ["exact", "analytic", "cvode"]
-)";
+const std::string kSpec = test_support::mixed_spec("shards test");
 constexpr long long kPoints = 54;
 
 PreparedSweep prepared(const std::string& text = kSpec) {
