@@ -186,6 +186,8 @@ SweepFiles sweep_files(const Spec& spec, const std::filesystem::path& data, cons
   return {dir / (stem + ".csv"), dir / (stem + ".json"), dir / (stem + ".partial.csv")};
 }
 
+std::string header_line(const PreparedSweep& sweep) { return join(sweep.kind->column_names()); }
+
 std::string fingerprint(const PreparedSweep& s) {
   std::uint64_t h = 1469598103934665603ULL;
   const auto mix = [&](const std::string& text) {

@@ -58,6 +58,9 @@ struct SweepFiles {
 [[nodiscard]] SweepFiles sweep_files(const Spec& spec, const std::filesystem::path& data,
                                      const Shard& shard = {});
 
+/// The CSV header: the kind's column names joined by commas.
+[[nodiscard]] std::string header_line(const PreparedSweep& sweep);
+
 /// FNV-1a over the kind, the columns and every point of the whole sweep (not of a shard): a
 /// checkpoint is only resumed, and a shard only merged, by the spec (after quick overrides) that
 /// wrote it.

@@ -13,14 +13,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string header_of(const PreparedSweep& sweep) {
-  std::string out;
-  for (const std::string& c : sweep.kind->column_names()) {
-    out += (out.empty() ? "" : ",") + c;
-  }
-  return out;
-}
-
 }  // namespace
 
 Coordinator::Coordinator(const PreparedSweep& sweep, const RunOptions& options)
@@ -28,7 +20,7 @@ Coordinator::Coordinator(const PreparedSweep& sweep, const RunOptions& options)
       options_(options),
       label_("[" + sweep.spec.study + "/" + sweep.spec.name +
              (options.shard.whole() ? std::string() : " shard " + options.shard.text()) + "] "),
-      header_(header_of(sweep)),
+      header_(header_line(sweep)),
       files_(sweep_files(sweep.spec, options.data_dir, options.shard)),
       checkpoint_(files_.partial, header_, fingerprint(sweep), options.timing,
                   static_cast<long long>(sweep.points.size()), options.resume),

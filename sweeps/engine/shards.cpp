@@ -21,14 +21,6 @@ using nlohmann::json;
 /// The largest shard CSV merge reads (the checkpoint's bound, checkpoint.cpp).
 constexpr std::size_t kMaxShardBytes = std::size_t{16} << 30;
 
-std::string header_of(const PreparedSweep& sweep) {
-  std::string out;
-  for (const std::string& c : sweep.kind->column_names()) {
-    out += (out.empty() ? "" : ",") + c;
-  }
-  return out;
-}
-
 /// The shard counts of this sweep's shard files (finished or checkpoints) in `dir`.
 std::set<long long> counts_on_disk(const fs::path& dir, const std::string& name) {
   std::set<long long> counts;
@@ -111,7 +103,7 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
   const Spec& spec = sweep.spec;
   const long long n = shard_count(sweep, options);
   const std::string print = fingerprint(sweep);
-  const std::string header = header_of(sweep);
+  const std::string header = header_line(sweep);
 
   // Every shard must be there and finished before anything is read.
   std::string missing;
