@@ -46,6 +46,27 @@
 //     the reported forces (up to rounding), whatever the quality of y. Converged ⇔ gap ≤ tol.
 // Cost: see tests/bench/bench_friction.cpp for the time against the viscous-Coulomb solve.
 //
+// The load. An external planar wrench on the body (gravity along a slope, §5.2.1, eq. 5.1), in
+// scaled coordinates f̃ = (F_x, F_y, M_z/L), adds its power to the balance: the velocity minimizes
+//   Φ(y) = D(y) − f̃ᵀy,
+// whose dual is the same with the balance Σ_k B_kᵀλ_k = f̃ (the forces F_k = −c_k W_k λ_k hold
+// the load). Φ is bounded below iff the disks can hold f̃; otherwise a unit direction e with
+// recession slope ρ(e) = Σ_k ‖B_k e‖ − f̃ᵀe < 0 proves that no quasi-static balance exists: the
+// robot slides. Every pass subtracts f̃ᵀy and f̃ (assemble, value), which is all Newton's method,
+// the kink model, the smoothing path and the polish need: their balance equations already read
+// "Σ Bᵀλ = what the gradient says". Two things change. (1) Scaling a candidate λ into the disks
+// no longer keeps it balanced (Σ Bᵀ(sλ) = s f̃); instead it is mixed with an anchor λ⁰ that
+// balances f̃ strictly inside them (max ‖λ⁰_k‖ = ρ₀ < 1): θλ + (1 − θ)λ⁰ with
+// θ = (1 − ρ₀)/(m − ρ₀) is balanced and feasible (m the candidate's largest norm), and its value
+// is θ v + (1 − θ) v⁰. Unloaded, λ⁰ = 0 and this is the scaling by 1/m. The anchor is the
+// c-weighted balance of the load, λ⁰_k = B_k μ/c_k with M₁μ = f̃ (each foot a share of the load in
+// proportion to its friction limit; on a slope with the CoM centred, ‖λ⁰_k‖ ≈ tan σ/μ), and the
+// smoothing path replaces it by its own corrected dual where that lies deeper inside (near a
+// holding limit). (2) The relative gap is taken against max(D(y), D(0)), dissipations, as Φ may
+// be negative. Sliding is detected before any iteration (all feet sliding together along the
+// load: Σ_k ‖B_k e‖ < ‖f̃_xy‖; a load with a component no foot feels) and whenever an iterate runs
+// away (‖y‖ > 10⁸ V), by the recession slope along it.
+//
 // Non-uniqueness. At an optimum with dual λ, a direction e keeps y optimal iff B_k e ∥ λ_k for
 // sliding feet and for static feet on the disk's rim (with λ_kᵀ B_k e ≥ 0 there: the foot starts
 // sliding along its force) and B_k e = 0 for static feet inside their disk. The first two are
@@ -65,7 +86,7 @@ namespace slipwalk::friction {
 namespace coulomb {
 
 namespace {
-constexpr int kKinkSteps = 12;  // the fast path's steps before the smoothing path takes over
+constexpr int kKinkSteps = 20;  // the fast path's steps before the smoothing path takes over
 // The shortest step the fast path's backtracking tries (halving from 1/2). Far from the optimum
 // the Newton model of a sum of norms can promise more decrease than D itself (it has no
 // curvature along a sliding foot's slip, so a foot whose slip the step reverses is modelled as
@@ -183,7 +204,8 @@ bool solve_spd3(const Eigen::Matrix3d& M, const Eigen::Vector3d& b, double tol,
   return true;
 }
 
-void Solver::run() {
+template <bool kLoaded>
+void Solver<kLoaded>::run() {
   auto& s = frame_.friction;
   s.iterations = 0;
   s.message.clear();
@@ -192,13 +214,31 @@ void Solver::run() {
   // ---- per-foot constants, Σ B_kᵀB_k (dual projection, degeneracy), the viscous start -----
   setup();
   dual_.factorize(M2_);
-  Eigen::Vector3d y = -viscous_.solve(b1_);
+  Eigen::Vector3d y;
+  if constexpr (kLoaded) {
+    if (!setup_load()) {
+      report_sliding();
+      return;
+    }
+    y = viscous_.solve(load_ - b1_);  // the viscous-Coulomb velocity under the same load
+    V_ = std::max(y.norm(), D0_ / std::max(cs_.c_sum, kEps));
+    if (!(anchor_.rho < 1.0) && !find_anchor(y)) {
+      report_sliding();  // near the holding limit, and past it
+      return;
+    }
+    if (anchor_.rho < 1.0 && D0_ - anchor_.value <= options_.tol * D0_) {
+      hold_at_rest();  // the feet do not move (q̇ = 0): the anchor holds the load, y = 0
+      return;
+    }
+  } else {
+    y = -viscous_.solve(b1_);
+  }
 
   // ---- trivial cases: no friction, nothing moves, or the viscous start slips nowhere -------
   const int n = std::max(cs_.active, 1);
   Sums S;
-  assemble<true>(y, 0.0, S);  // D(y) and ‖r_k‖² (g, H are not finite if some r_k = 0)
-  const double D = S.f;
+  assemble<true>(y, 0.0, S);  // Φ(y) and ‖r_k‖² (g, H are not finite if some r_k = 0)
+  const double D = dissipation(S.f, y);
   const double Dref = std::max(D, D0_);
   if (cs_.active == 0 || Dref == 0.0) {
     classify(0.0);  // y = 0 (the viscous least-norm answer) is exact, forces zero
@@ -219,13 +259,23 @@ void Solver::run() {
 
   // ---- the fast path: Newton with the foot nearest to rest modelled exactly ------------------
   s.route = contact::FrictionSummary::Route::kPath;
-  if (options_.fast_path && S.r2_min > 1e-28 * D0_ * D0_) {
+  bool anchored = true;  // loaded: the fast path certifies only with an anchor inside the disks
+  if constexpr (kLoaded) {
+    anchored = anchor_.rho < 1.0;
+  }
+  if (options_.fast_path && anchored && S.r2_min > 1e-28 * D0_ * D0_) {
     const Eigen::Vector3d start = y;
     Dual dual;
     s.route = contact::FrictionSummary::Route::kFastPath;
     if (kink_newton(y, S, Dref, dual)) {
       finish(y, dual);
       return;
+    }
+    if constexpr (kLoaded) {
+      if (sliding_ < 0.0) {
+        report_sliding();
+        return;
+      }
     }
     // Several feet near rest at once (e.g. a mirror-symmetric pair): the path takes over from
     // the viscous start, every foot sliding.
@@ -238,7 +288,8 @@ void Solver::run() {
   path(y, S, Dref);
 }
 
-void Solver::setup() {
+template <bool kLoaded>
+void Solver<kLoaded>::setup() {
   // Raw row pointers: Eigen's row and block expressions cost more than the arithmetic here.
   contact::CoulombScratch& R = frame_.coulomb;
   if (!R.fits(frame_.legs())) {  // a frame resized after construction
@@ -366,16 +417,128 @@ void Solver::setup() {
   viscous_.factorize(M1_);
 }
 
+// ---- the load ---------------------------------------------------------------------------------
+template <bool kLoaded>
+bool Solver<kLoaded>::setup_load() {
+  load_ << load_raw_(0), load_raw_(1), load_raw_(2) * cs_.inv_L;
+  const double f_norm = load_.norm();
+  if (cs_.active == 0) {
+    sliding_ = -f_norm;  // nothing holds it: every direction with f̃ᵀe > 0 is one of descent
+    return false;
+  }
+  // The anchor: M₁ μ = f̃ (least norm); a load M₁ cannot reproduce has a part no foot feels.
+  const Eigen::Vector3d mu = viscous_.solve(load_);
+  const Eigen::Vector3d miss = load_ - M1_ * mu;
+  if (!(miss.norm() <= 1e-9 * f_norm)) {
+    const double slope = recession(miss / miss.norm());  // ≈ −‖miss‖: no foot feels it
+    if (slope < 0.0) {
+      sliding_ = slope;
+      return false;
+    }
+  }
+  // One pass: ρ₀ = max_k ‖B_k μ‖/c_k, and Σ_k ‖B_k e‖ for the translation e along the load.
+  const contact::CoulombScratch& R = frame_.coulomb;
+  const double fxy = load_.head<2>().norm();
+  const double ex = fxy > 0.0 ? load_(0) / fxy : 0.0;
+  const double ey = fxy > 0.0 ? load_(1) / fxy : 0.0;
+  double rho2 = 0.0;
+  double along = 0.0;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (R.active(k) == 0.0) {
+      continue;
+    }
+    const Mat23 Bk = B(k);
+    rho2 = std::max(rho2, (Bk * mu).squaredNorm() * R.inv_weight2(k));
+    along += (Bk.leftCols<2>() * Eigen::Vector2d(ex, ey)).norm();
+  }
+  if (along < fxy) {
+    sliding_ = along - fxy;  // all feet sliding together along the load cannot hold it
+    return false;
+  }
+  anchor_ = Interior{false, Eigen::Vector3d::Zero(), 1.0, mu, std::sqrt(rho2), mu.dot(b1_)};
+  return true;
+}
+
+template <bool kLoaded>
+double Solver<kLoaded>::recession(const Eigen::Vector3d& e) const {
+  double r = -load_.dot(e);
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (frame_.coulomb.active(k) != 0.0) {
+      r += (B(k) * e).norm();
+    }
+  }
+  return r;
+}
+
+template <bool kLoaded>
+bool Solver<kLoaded>::ran_away(const Eigen::Vector3d& y) {
+  const double ny = y.norm();
+  if (!(ny > 1e8 * V_) || !std::isfinite(ny)) {
+    return false;
+  }
+  const double slope = recession(y / ny);
+  sliding_ = slope < 0.0 ? slope : sliding_;
+  return slope < 0.0;
+}
+
+template <bool kLoaded>
+[[gnu::cold, gnu::noinline]] void Solver<kLoaded>::report_sliding() {
+  frame_.v_body.setZero();
+  frame_.Fxy.setZero();
+  auto& s = frame_.friction;
+  s.converged = false;
+  s.residual = 0.0;
+  const double scale = scale_ + load_.norm();
+  s.certificate = scale > 0.0 ? sliding_ / scale : sliding_;
+  s.unique = false;
+  s.static_feet = 0;
+  s.dissipation = 0.0;
+  s.message =
+      "sliding: the friction forces cannot hold the external load (no quasi-static balance)";
+}
+
+template <bool kLoaded>
+void Solver<kLoaded>::hold_at_rest() {
+  // Φ(0) = D(0) and the anchor's value v⁰ ≥ (1 − tol) D(0): y = 0 is certified by the anchor
+  // itself (inside the disks, balanced). Every foot with friction is static.
+  Dual dual;
+  dual.h = -load_;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    set_state(k, kStatic);
+    const Eigen::Vector2d lam = interior(k);
+    frame_.work_2n.col(k) = lam;
+    dual.h += B(k).transpose() * lam;
+  }
+  finish(Eigen::Vector3d::Zero(), dual);
+}
+
+template <bool kLoaded>
+Eigen::Vector2d Solver<kLoaded>::interior(int k) const {
+  const Mat23 Bk = B(k);
+  if (anchor_.path) {
+    const Eigen::Vector2d r = residual(k, anchor_.y);
+    return r / std::sqrt(r.squaredNorm() + anchor_.d2) - Bk * anchor_.mu;
+  }
+  return (Bk * anchor_.mu) / weight(k);
+}
+
 // ---- the fast path --------------------------------------------------------------------------
-bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
+template <bool kLoaded>
+bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
   auto& s = frame_.friction;
   int held = -1;  // the foot held static: y lies on its line r_held(y) = 0
   double D = S.f;
   double precision = 1e-3;  // the certificate is tried below precision · tol · D (see kDeepCut)
+  int forced = -1;          // a kink foot chosen after a failed line search (below)
+  bool damped = false;      // retry that foot's model with curvature added
+  bool retried = false;     // one retry per point
   for (int it = 0;; ++it) {
     // The kink foot: the held one, or the sliding foot slowest in slip speed ‖r_k‖/c_k
     // (found without branches: which foot it is varies from frame to frame).
-    int ks = held;
+    int ks = held >= 0 ? held : forced;
     if (ks < 0) {
       const contact::CoulombScratch& R = frame_.coulomb;
       double best = kInf;
@@ -388,7 +551,7 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
         return false;  // no foot slides at a finite slip speed (constants out of scale)
       }
     }
-    const auto Bk = B(ks);
+    const Mat23 Bk = B(ks);
     const Eigen::Vector2d r = Bk * y + d(ks);
     const double nr = r.norm();
     Eigen::Vector3d g = S.g;
@@ -400,7 +563,7 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
       st.decrease = -0.5 * g.dot(st.p);
       newton_ok = st.decrease > 0.0;
     }
-    if (!newton_ok || (Bk * st.p).squaredNorm() > nr * nr) {
+    if (!newton_ok || forced >= 0 || damped || (Bk * st.p).squaredNorm() > nr * nr) {
       const KinkStep plain = st;
       if (held < 0) {  // take the kink foot's quadratic model out of the sums
         const double inr = 1.0 / nr;
@@ -409,21 +572,21 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
         g -= Bk.transpose() * n;
         H -= (t * inr) * t.transpose();
       }
-      if (!kink_step(g, H, Bk, r, nr, st)) {
+      if (damped || !kink_step(g, H, Bk, r, nr, st)) {
         // A degenerate model: the other sliding feet's quadratic models are flat along their
         // slip (e.g. only two of them), and with the kink foot sliding it is unbounded there.
-        // The plain step if there is one, else the model with a little curvature of M₂ added
-        // (a damped step: the line search judges it, the certificate uses the true H).
-        if (!newton_ok) {
-          const double eps = 1e-2 * H.trace() / M2_.trace();
-          if (!kink_step(g, Eigen::Matrix3d(H + eps * M2_), Bk, r, nr, st)) {
-            return false;
-          }
+        // The model with a little curvature of M₂ added (a damped step: the line search judges
+        // it, the certificate uses the true H), else the plain step if there is one. (The plain
+        // step alone would cross this foot's kink again and again at a crawl.)
+        const double eps = 1e-2 * H.trace() / M2_.trace();
+        if (kink_step(g, Eigen::Matrix3d(H + eps * M2_), Bk, r, nr, st)) {
           kink = ks;
-        } else {
+        } else if (newton_ok) {
           g = S.g;
           H = S.H;
           st = plain;
+        } else {
+          return false;
         }
       } else {
         kink = ks;
@@ -445,7 +608,7 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
         h += Bk.transpose() * st.lam;
         value += st.lam.dot(d(ks));
       }
-      if (bound(kink >= 0 ? fo + nr : fo, value, lmax, h) <= options_.tol) {
+      if (bound(kink >= 0 ? fo + nr : fo, value, lmax, h, y) <= options_.tol) {
         if (kink >= 0) {
           set_state(ks, st.stick ? kStatic : kSlip);
           frame_.work_2n.col(ks) = st.lam;
@@ -460,7 +623,7 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
     // Armijo on D against the model's decrease; the pass at the full step is the next step's.
     ++s.iterations;
     const bool stick = kink >= 0 && st.stick;
-    const double slack = 8.0 * kEps * D;
+    const double slack = 8.0 * kEps * rounding_scale(D, y);
     set_state(ks, stick ? kStatic : kSlip);
     Sums T;
     const Eigen::Vector3d trial = y + st.p;
@@ -471,6 +634,14 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
       S = T;
       D = Dt;
       held = stick ? ks : -1;
+      forced = -1;
+      damped = false;
+      retried = false;
+      if constexpr (kLoaded) {
+        if (ran_away(y)) {
+          return false;
+        }
+      }
       continue;
     }
     // Backtracking: off the full step a sticking foot slips again, unless it was held and
@@ -490,8 +661,31 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
       }
     }
     if (!accepted) {
-      return false;
+      // The model promised a decrease D does not show. Once per point: if it modelled a foot
+      // exactly, that model again with curvature added (its minimizer can lie far out along a
+      // direction the other feet barely resist); if it took the plain step, the step crossed
+      // the kink of a foot it did not model (another than the slowest, or the slowest whose
+      // exact model was degenerate): the foot whose slip it changes most relative to its size.
+      if (retried) {
+        return false;
+      }
+      retried = true;
+      if (kink >= 0) {
+        damped = true;
+        forced = held >= 0 ? -1 : ks;
+      } else {
+        const int cross = most_crossed(y, st.p);
+        if (cross < 0) {
+          return false;
+        }
+        forced = cross;
+      }
+      set_state(ks, held == ks ? kStatic : kSlip);
+      continue;
     }
+    retried = false;
+    damped = false;
+    forced = -1;
     assemble<false>(y, 0.0, S);
     if (!(S.r2_min > 1e-28 * D0_ * D0_)) {
       return false;
@@ -500,18 +694,51 @@ bool Solver::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual) {
   }
 }
 
+template <bool kLoaded>
+[[gnu::cold, gnu::noinline]] int Solver<kLoaded>::most_crossed(const Eigen::Vector3d& y,
+                                                               const Eigen::Vector3d& p) const {
+  int best = -1;
+  double ratio = 1.0;  // only a foot whose slip the step changes by more than its size
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) != kSlip) {
+      continue;
+    }
+    const double r2 = residual(k, y).squaredNorm();
+    const double q = (B(k) * p).squaredNorm();
+    if (q > ratio * r2) {
+      ratio = q / r2;
+      best = k;
+    }
+  }
+  return best;
+}
+
 // ---- certificates without a pass (see Dual in the header) ---------------------------------
-double Solver::bound(double primal, double value, double lmax, const Eigen::Vector3d& h) const {
+template <bool kLoaded>
+double Solver<kLoaded>::bound(double primal, double value, double lmax, const Eigen::Vector3d& h,
+                              const Eigen::Vector3d& y) const {
   const Eigen::Vector3d mu = dual_.solve(h);
-  const double shrink = 1.0 / std::max(1.0, lmax + std::sqrt(std::max(mu.dot(h), 0.0)));
-  const double dual = shrink * (value - mu.dot(b2_));
-  const double denom = std::max(primal, D0_);
+  const double m = lmax + std::sqrt(std::max(mu.dot(h), 0.0));
+  double dual = value - mu.dot(b2_);
+  if constexpr (kLoaded) {
+    if (m > 1.0) {
+      if (!(anchor_.rho < 1.0)) {
+        return kInf;  // no anchor inside the disks yet: only a candidate inside them certifies
+      }
+      const double theta = (1.0 - anchor_.rho) / (m - anchor_.rho);
+      dual = theta * dual + (1.0 - theta) * anchor_.value;
+    }
+  } else {
+    dual *= 1.0 / std::max(1.0, m);
+  }
+  const double denom = std::max(dissipation(primal, y), D0_);
   return denom > 0.0 ? std::max(primal - dual, 0.0) / denom : 0.0;
 }
 
+template <bool kLoaded>
 template <bool kPath>
-FinishSums Solver::finish_pass(const Eigen::Vector3d& y, const Dual& dual,
-                               const Eigen::Vector3d& mu) {
+FinishSums Solver<kLoaded>::finish_pass(const Eigen::Vector3d& y, const Dual& dual,
+                                        const Eigen::Vector3d& mu) {
   const Rows R = rows(true);
   const double* slide = frame_.coulomb.sliding.data();
   const double* c = frame_.coulomb.weight.data();
@@ -599,7 +826,8 @@ FinishSums Solver::finish_pass(const Eigen::Vector3d& y, const Dual& dual,
   return out;
 }
 
-void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
+template <bool kLoaded>
+void Solver<kLoaded>::finish(Eigen::Vector3d y, const Dual& dual) {
   auto& s = frame_.friction;
   const Eigen::Vector3d mu = dual_.solve(dual.h);
   const FinishSums fs =
@@ -627,19 +855,32 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
       }
     }
   }
+  bool feasible = true;
   if (lmax2 > 1.0) {
-    const double shrink = 1.0 / std::sqrt(lmax2);
-    frame_.Fxy *= shrink;
-    frame_.work_2n *= shrink;
-    sum.force *= shrink;
-    sum.moment *= shrink;
-    value *= shrink;
+    if constexpr (kLoaded) {
+      feasible = mix(std::sqrt(lmax2), sum, value);
+    } else {
+      const double shrink = 1.0 / std::sqrt(lmax2);
+      frame_.Fxy *= shrink;
+      frame_.work_2n *= shrink;
+      sum.force *= shrink;
+      sum.moment *= shrink;
+      value *= shrink;
+    }
   }
-  if (stepped <= primal + 8.0 * kEps * primal) {
+  // Φ at y and at the Newton point (D itself when unloaded).
+  double phi = primal;
+  double phi_stepped = stepped;
+  if constexpr (kLoaded) {
+    phi -= load_.dot(y);
+    phi_stepped -= load_.dot(y + dual.p);
+  }
+  if (phi_stepped <= phi + 8.0 * kEps * rounding_scale(phi, y)) {
     // The Newton point: D agrees to rounding near the optimum, but the step zeroes the
     // gradient, which places y far more precisely than a comparison of values can.
     y += dual.p;
     primal = stepped;
+    phi = phi_stepped;
   }
   // M₂ weighs the feet by c_k², so it is rank-deficient to rounding not only when the contacts
   // are at one point but also when the weights span more than ~6 decades and only the lightest
@@ -647,13 +888,20 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
   // change after the certificate), and the dual's correction does not balance along it; the
   // forces are then balanced again in the viscous metric M₁ (∝ c_k, rebalance()), and the
   // certificate holds only if they balance (checked on the forces themselves).
-  const bool light = dual_.rank() < 3 && !one_point();
-  if (light && !(sum.residual(scale_, cs_.L) <= kBalanced)) {
-    value = rebalance(sum);
+  double force_scale = scale_;
+  if constexpr (kLoaded) {  // the forces balance the load: Σ F_k + f = 0, Σ M_k + M_z = 0
+    sum.force += load_raw_.head<2>();
+    sum.moment += load_raw_(2);
+    force_scale += load_.norm();
   }
-  s.residual = sum.residual(scale_, cs_.L);
+  const bool light = dual_.rank() < 3 && !one_point();
+  if (light && !(sum.residual(force_scale, cs_.L) <= kBalanced)) {
+    value = rebalance(sum);
+    feasible = std::isfinite(value);
+  }
+  s.residual = sum.residual(force_scale, cs_.L);
   const double denom = std::max(primal, D0_);
-  const double cert = denom > 0.0 ? std::max(primal - value, 0.0) / denom : 0.0;
+  const double cert = !feasible ? kInf : (denom > 0.0 ? std::max(phi - value, 0.0) / denom : 0.0);
   const bool unbalanced = light && !(s.residual <= kBalanced);
   s.certificate = cert;
   s.converged = cert <= options_.tol && !unbalanced;
@@ -672,6 +920,10 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
         "friction weights mu_k F_z,k spread over too many decades: the certifying forces "
         "do not balance along a direction only the lightest feet feel (residual " +
         core::format_double(s.residual) + ")";
+  } else if (!feasible) {
+    s.message =
+        "no balanced forces inside the friction disks found near the holding limit: not "
+        "certified";
   } else if (!s.converged) {
     s.message = "iteration limit: relative duality gap " + core::format_double(cert) +
                 " above the tolerance " + core::format_double(options_.tol);
@@ -690,7 +942,8 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
   }
 }
 
-[[gnu::cold, gnu::noinline]] double Solver::rebalance(detail::BalanceSum& sum) {
+template <bool kLoaded>
+[[gnu::cold, gnu::noinline]] double Solver<kLoaded>::rebalance(detail::BalanceSum& sum) {
   // λ_k −= B_k μ / c_k with M₁ μ = h = Σ B_kᵀλ_k: the correction of each foot is in units of its
   // own disk, so a light foot takes its share of the direction only it feels.
   Eigen::Vector3d h = Eigen::Vector3d::Zero();
@@ -698,6 +951,9 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
     if (state(k) != kInactive) {
       h += B(k).transpose() * Eigen::Vector2d(frame_.work_2n.col(k));
     }
+  }
+  if constexpr (kLoaded) {
+    h -= load_;
   }
   const Eigen::Vector3d mu = viscous_.solve(h);
   double lmax2 = 0.0;
@@ -707,7 +963,7 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
     if (state(k) == kInactive) {
       continue;
     }
-    const auto Bk = B(k);
+    const Mat23 Bk = B(k);
     const Eigen::Vector2d lam = frame_.work_2n.col(k) - Bk * mu / weight(k);
     lmax2 = std::max(lmax2, lam.squaredNorm());
     value += lam.dot(d(k));
@@ -715,18 +971,50 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
     frame_.Fxy.col(k) = -(Bk.leftCols<2>() * lam);  // F_k = −c_k W_k λ_k
     sum.add(frame_, k, frame_.Fxy.col(k));
   }
-  if (lmax2 > 1.0) {  // a common scale keeps the balance
-    const double shrink = 1.0 / std::sqrt(lmax2);
-    frame_.Fxy *= shrink;
-    frame_.work_2n *= shrink;
-    sum.force *= shrink;
-    sum.moment *= shrink;
-    value *= shrink;
+  if (lmax2 > 1.0) {
+    if constexpr (kLoaded) {  // mixed with the anchor, which keeps the load's balance
+      if (!mix(std::sqrt(lmax2), sum, value)) {
+        return -kInf;
+      }
+    } else {  // a common scale keeps the balance
+      const double shrink = 1.0 / std::sqrt(lmax2);
+      frame_.Fxy *= shrink;
+      frame_.work_2n *= shrink;
+      sum.force *= shrink;
+      sum.moment *= shrink;
+      value *= shrink;
+    }
+  }
+  if constexpr (kLoaded) {
+    sum.force += load_raw_.head<2>();
+    sum.moment += load_raw_(2);
   }
   return value;
 }
 
-[[gnu::cold, gnu::noinline]] bool Solver::one_point() const {
+template <bool kLoaded>
+bool Solver<kLoaded>::mix(double m, detail::BalanceSum& sum, double& value) {
+  if (!(anchor_.rho < 1.0)) {
+    return false;
+  }
+  const double theta = (1.0 - anchor_.rho) / (m - anchor_.rho);
+  sum = detail::BalanceSum{};
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    const Eigen::Vector2d lam =
+        theta * Eigen::Vector2d(frame_.work_2n.col(k)) + (1.0 - theta) * interior(k);
+    frame_.work_2n.col(k) = lam;
+    frame_.Fxy.col(k) = -(B(k).template leftCols<2>() * lam);  // F_k = −c_k W_k λ_k
+    sum.add(frame_, k, frame_.Fxy.col(k));
+  }
+  value = theta * value + (1.0 - theta) * anchor_.value;
+  return true;
+}
+
+template <bool kLoaded>
+[[gnu::cold, gnu::noinline]] bool Solver<kLoaded>::one_point() const {
   int first = -1;
   for (int k = 0; k < frame_.legs(); ++k) {
     if (state(k) == kInactive) {
@@ -741,7 +1029,8 @@ void Solver::finish(Eigen::Vector3d y, const Dual& dual) {
   return true;
 }
 
-bool Solver::flat_direction(Eigen::Matrix3d Q, int n_static) const {
+template <bool kLoaded>
+bool Solver<kLoaded>::flat_direction(Eigen::Matrix3d Q, int n_static) const {
   if (n_static > 0) {
     for (int k = 0; k < frame_.legs(); ++k) {
       if (state(k) != kStatic) {
@@ -749,7 +1038,7 @@ bool Solver::flat_direction(Eigen::Matrix3d Q, int n_static) const {
       }
       const Eigen::Vector2d lam = frame_.work_2n.col(k);
       const double nl = lam.norm();
-      const auto Bk = B(k);
+      const Mat23 Bk = B(k);
       if (nl >= 1.0 - 1e-9) {
         const Eigen::Vector2d np(-lam(1) / nl, lam(0) / nl);
         const Eigen::Vector3d t = Bk.transpose() * np;
@@ -798,11 +1087,25 @@ bool Solver::flat_direction(Eigen::Matrix3d Q, int n_static) const {
   return false;
 }
 
+template class Solver<false>;
+template class Solver<true>;
+
 }  // namespace coulomb
 
 void solve_coulomb(const contact::Robot& robot, contact::Frame& frame,
                    const CoulombOptions& options) {
-  coulomb::Solver(robot, frame, options).run();
+  coulomb::Solver<false>(robot, frame, options).run();
+  detail::flag_non_finite(frame, frame.Fxy.sum());
+}
+
+void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
+                          const Eigen::Vector3d& load, const CoulombOptions& options) {
+  if (load(0) == 0.0 && load(1) == 0.0 && load(2) == 0.0) {
+    // No load is the flat problem (a slope of angle 0 is flat bit for bit).
+    solve_coulomb(robot, frame, options);
+    return;
+  }
+  coulomb::Solver<true>(robot, frame, options, load).run();
   detail::flag_non_finite(frame, frame.Fxy.sum());
 }
 

@@ -37,11 +37,12 @@ constexpr double kKappa = 10.0;  // static: ‖r_k‖ ≤ kKappa δ
 
 }  // namespace
 
-void Solver::path(Eigen::Vector3d y, Sums& S, double Dref) {
+template <bool kLoaded>
+void Solver<kLoaded>::path(Eigen::Vector3d y, Sums& S, double Dref) {
   auto& s = frame_.friction;
   const int n = std::max(cs_.active, 1);
   const double delta_min = std::max(0.1 * options_.tol * Dref / n, 64.0 * kEps * Dref / n);
-  double delta = std::max(kDelta0 * value<true>(y, 0.0) / n, delta_min);
+  double delta = std::max(kDelta0 * dissipation(value<true>(y, 0.0), y) / n, delta_min);
   assemble<true>(y, delta * delta, S);
   int stage_steps = 0;
   bool stalled = false;
@@ -51,6 +52,11 @@ void Solver::path(Eigen::Vector3d y, Sums& S, double Dref) {
     const double slope = S.g.dot(p);
     if (!(-slope > 3.0 * delta) || stalled || stage_steps >= 8 || delta <= delta_min) {
       // End of a stage at y.
+      if constexpr (kLoaded) {
+        if (anchor_.rho > 0.5) {
+          adopt_interior(y, S, delta);  // near a holding limit: a deeper anchor
+        }
+      }
       if (delta <= 1e3 * delta_min) {
         // The smoothing path's own dual λ_k = r_k/ρ_k: its gap is O(N δ / D), so it is only
         // worth checking near the end of the path.
@@ -85,17 +91,24 @@ void Solver::path(Eigen::Vector3d y, Sums& S, double Dref) {
     ++stage_steps;
     stalled = !(slope < 0.0) || !line_search<true>(y, p, slope, delta * delta, 60, 0.0, S);
     fresh = fresh || !stalled;
+    if constexpr (kLoaded) {
+      if (ran_away(y)) {
+        report_sliding();
+        return;
+      }
+    }
   }
   // Out of iterations: the last point of the path with its own dual.
   classify(kKappa * delta);
   finish(y, Dual{true, delta * delta, Eigen::Vector3d::Zero(), S.g});
 }
 
+template <bool kLoaded>
 template <bool kAll>
-bool Solver::line_search(Eigen::Vector3d& y, const Eigen::Vector3d& p, double slope, double d2,
-                         int halvings, double t_min, Sums& S) {
+bool Solver<kLoaded>::line_search(Eigen::Vector3d& y, const Eigen::Vector3d& p, double slope,
+                                  double d2, int halvings, double t_min, Sums& S) {
   const double f0 = S.f;
-  const double slack = 8.0 * kEps * f0;
+  const double slack = 8.0 * kEps * rounding_scale(f0, y);
   Sums T;
   assemble<kAll>(y + p, d2, T);
   if (T.f <= f0 + 1e-4 * slope + slack) {
@@ -114,7 +127,8 @@ bool Solver::line_search(Eigen::Vector3d& y, const Eigen::Vector3d& p, double sl
   return false;
 }
 
-Eigen::Vector3d Solver::smoothing_step(const Sums& S) const {
+template <bool kLoaded>
+Eigen::Vector3d Solver<kLoaded>::smoothing_step(const Sums& S) const {
   Eigen::Matrix3d H = S.H;
   dual_.add_null_space(H, H.trace());
   detail::Psd3 solver;
@@ -124,18 +138,21 @@ Eigen::Vector3d Solver::smoothing_step(const Sums& S) const {
   return -solver.solve(S.g);
 }
 
-double Solver::path_bound(const Eigen::Vector3d& y, const Sums& S, double delta) const {
+template <bool kLoaded>
+double Solver<kLoaded>::path_bound(const Eigen::Vector3d& y, const Sums& S, double delta) const {
   const double d2 = delta * delta;
   const double value = S.f - d2 * S.inv_rho - y.dot(S.g);
   const double lmax = std::sqrt(std::max(1.0 - d2 / (S.rho_max * S.rho_max), 0.0));
-  const double lower = std::max(S.f - cs_.active * delta, 0.0);
-  const double gap = bound(S.f, value, lmax, S.g);
-  const double denom = std::max(S.f, D0_);
+  const double dissipated = dissipation(S.f, y);  // Σ ρ_k ≥ D(y)
+  const double lower = std::max(dissipated - cs_.active * delta, 0.0);
+  const double gap = bound(S.f, value, lmax, S.g, y);
+  const double denom = std::max(dissipated, D0_);
   return gap * denom / std::max(std::max(lower, D0_), kEps * denom);
 }
 
-double Solver::polish_bound(const Eigen::Vector3d& y, const Sums& S, const Eigen::Vector3d& p,
-                            int dim, int n_static, Dual& dual) {
+template <bool kLoaded>
+double Solver<kLoaded>::polish_bound(const Eigen::Vector3d& y, const Sums& S,
+                                     const Eigen::Vector3d& p, int dim, int n_static, Dual& dual) {
   const Eigen::Vector3d gp = S.g + S.H * p;
   const double dec = p.dot(S.H * p);
   double lmax = S.r2_min < kInf ? std::sqrt(1.0 + std::max(dec, 0.0) / std::sqrt(S.r2_min)) : 1.0;
@@ -145,16 +162,17 @@ double Solver::polish_bound(const Eigen::Vector3d& y, const Sums& S, const Eigen
     lmax = std::max(lmax, st.lmax);
   }
   dual = Dual{false, 0.0, p, gp + st.force};
-  return bound(S.f + st.primal, S.f - gp.dot(y) + st.value, lmax, dual.h);
+  return bound(S.f + st.primal, S.f - gp.dot(y) + st.value, lmax, dual.h, y);
 }
 
-StaticDual Solver::static_duals(const Eigen::Vector3d& y, const Eigen::Vector3d& gp) {
+template <bool kLoaded>
+StaticDual Solver<kLoaded>::static_duals(const Eigen::Vector3d& y, const Eigen::Vector3d& gp) {
   StaticDual st;
   for (int k = 0; k < frame_.legs(); ++k) {
     if (state(k) != kStatic) {
       continue;
     }
-    const auto Bk = B(k);
+    const Mat23 Bk = B(k);
     const Eigen::Vector2d lam = Bk.leftCols<2>().partialPivLu().solve(
         Eigen::Vector2d(-(weight(k) / c_static_) * gp.head<2>()));
     frame_.work_2n.col(k) = lam;
@@ -166,7 +184,8 @@ StaticDual Solver::static_duals(const Eigen::Vector3d& y, const Eigen::Vector3d&
   return st;
 }
 
-void Solver::zero_static_duals() {
+template <bool kLoaded>
+void Solver<kLoaded>::zero_static_duals() {
   for (int k = 0; k < frame_.legs(); ++k) {
     if (state(k) == kStatic) {
       frame_.work_2n.col(k).setZero();
@@ -174,8 +193,59 @@ void Solver::zero_static_duals() {
   }
 }
 
+template <bool kLoaded>
+bool Solver<kLoaded>::find_anchor(Eigen::Vector3d y) {
+  auto& s = frame_.friction;
+  const int n = std::max(cs_.active, 1);
+  const double delta = std::max(dissipation(value<true>(y, 0.0), y) / n, kEps * D0_);
+  if (!(delta > 0.0)) {
+    return false;
+  }
+  const double d2 = delta * delta;
+  Sums S;
+  assemble<true>(y, d2, S);
+  for (int it = 0; it < 40 && s.iterations < options_.max_iterations; ++it) {
+    const Eigen::Vector3d p = smoothing_step(S);
+    const double slope = S.g.dot(p);
+    // The correction's size² is about the decrement over δ (M₂ ≈ δ H where the feet slide
+    // slowly against δ): converged once that is ~1e-16, a step after the decrement falls below it.
+    if (!(-slope > 1e-16 * delta) || !line_search<true>(y, p, slope, d2, 60, 0.0, S)) {
+      break;
+    }
+    ++s.iterations;
+    if (ran_away(y)) {
+      return false;
+    }
+  }
+  adopt_interior(y, S, delta);
+  return anchor_.rho < 1.0;
+}
+
+template <bool kLoaded>
+void Solver<kLoaded>::adopt_interior(const Eigen::Vector3d& y, const Sums& S, double delta) {
+  // λ_k = r_k/ρ_k is balanced up to S.g (Φ_δ's gradient); M₂'s correction balances it exactly.
+  const Eigen::Vector3d mu = dual_.solve(S.g);
+  const double d2 = delta * delta;
+  double rho2 = 0.0;
+  double value = 0.0;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) == kInactive) {
+      continue;
+    }
+    const Eigen::Vector2d r = residual(k, y);
+    const Eigen::Vector2d lam = r / std::sqrt(r.squaredNorm() + d2) - B(k) * mu;
+    rho2 = std::max(rho2, lam.squaredNorm());
+    value += lam.dot(d(k));
+  }
+  const double rho = std::sqrt(rho2);
+  if (rho < anchor_.rho) {
+    anchor_ = Interior{true, y, d2, mu, rho, value};
+  }
+}
+
 // ---- the active set ---------------------------------------------------------------------------
-int Solver::classify(double threshold) {
+template <bool kLoaded>
+int Solver<kLoaded>::classify(double threshold) {
   const double t2 = threshold * threshold;
   int n = 0;
   for (int k = 0; k < frame_.legs(); ++k) {
@@ -189,7 +259,8 @@ int Solver::classify(double threshold) {
   return n;
 }
 
-bool Solver::try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual& dual) {
+template <bool kLoaded>
+bool Solver<kLoaded>::try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual& dual) {
   const double t2 = threshold * threshold;
   // Classify, and find the three slowest sliding feet: k1, k2 with ‖r‖² = r1 ≤ r2 ≤ r3.
   int k1 = -1;
@@ -230,7 +301,8 @@ bool Solver::try_polish(Eigen::Vector3d& y, double threshold, double delta, Dual
   return polish(y, delta, dual);
 }
 
-bool Solver::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
+template <bool kLoaded>
+bool Solver<kLoaded>::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
   auto& s = frame_.friction;
   // ---- where the static feet do not slip: all of R³, a line or a point --------------------
   // The path's dual of the static feet (λ = r/ρ) goes to work_2n as a start for
@@ -253,7 +325,7 @@ bool Solver::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
     } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).norm() > 1e-6 * cs_.L) {
       one_point = false;
     }
-    const auto Bk = B(k);
+    const Mat23 Bk = B(k);
     const Eigen::Vector2d r = residual(k, y);
     const double rho = std::sqrt(r.squaredNorm() + delta * delta);
     frame_.work_2n.col(k) = delta > 0.0 ? Eigen::Vector2d(r / rho) : Eigen::Vector2d::Zero();
@@ -270,7 +342,7 @@ bool Solver::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
     // v = −q̇_S − ω̃ s̃_p: the static feet's common point p stays put; ω̃ is free. s̃_p is the
     // lever of the first static foot: B_xy⁻¹ B_ω.
     dim = 1;
-    const auto Bf = B(first);
+    const Mat23 Bf = B(first);
     const Eigen::Vector2d sp = Bf.leftCols<2>().partialPivLu().solve(Eigen::Vector2d(Bf.col(2)));
     y.head<2>() = -(GS.inverse() * hS) - y(2) * sp;
     e = Eigen::Vector3d(-sp(0), -sp(1), 1.0).normalized();
@@ -323,7 +395,7 @@ bool Solver::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
     // Certified only once the decrement is tiny (then finish()'s Newton point y + p is exact
     // to ~1e-13, see kink_newton); near a sliding foot at rest the linearized dual is loose,
     // the plain directions n_k (p = 0) are not.
-    if (!(decrement > 1e-3 * options_.tol * std::max(S.f, D0_))) {
+    if (!(decrement > 1e-3 * options_.tol * std::max(dissipation(S.f, y), D0_))) {
       return polish_bound(y, S, p, dim, n_static, dual) <= options_.tol ||
              polish_bound(y, S, Eigen::Vector3d::Zero(), dim, n_static, dual) <= options_.tol;
     }
@@ -340,8 +412,10 @@ bool Solver::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
   }
 }
 
-bool Solver::fixed_point_dual(const Eigen::Vector3d& y, const Sums& S,
-                              const detail::Psd3& static_solver, int n_static, Dual& dual) {
+template <bool kLoaded>
+bool Solver<kLoaded>::fixed_point_dual(const Eigen::Vector3d& y, const Sums& S,
+                                       const detail::Psd3& static_solver, int n_static,
+                                       Dual& dual) {
   if (n_static > 2) {
     fit_static_forces(static_solver, S.g, n_static);
   } else {
@@ -364,12 +438,13 @@ bool Solver::fixed_point_dual(const Eigen::Vector3d& y, const Sums& S,
     }
   }
   dual = Dual{false, 0.0, Eigen::Vector3d::Zero(), S.g + st.force};
-  return bound(S.f + st.primal, S.f - S.g.dot(y) + st.value, std::max(1.0, st.lmax), dual.h) <=
+  return bound(S.f + st.primal, S.f - S.g.dot(y) + st.value, std::max(1.0, st.lmax), dual.h, y) <=
          options_.tol;
 }
 
-void Solver::fit_static_forces(const detail::Psd3& static_solver, const Eigen::Vector3d& g,
-                               int n_static) {
+template <bool kLoaded>
+void Solver<kLoaded>::fit_static_forces(const detail::Psd3& static_solver, const Eigen::Vector3d& g,
+                                        int n_static) {
   auto lam = [this](int k) { return frame_.work_2n.col(k); };
   double worst = 0.0;
   int a = -1;
@@ -387,8 +462,8 @@ void Solver::fit_static_forces(const detail::Psd3& static_solver, const Eigen::V
   if (n_static == 2) {
     // λ_a + t z_a, λ_b + t z_b with c_a W_a z_a = dq = −c_b W_b z_b, dq ∥ q_a − q_b.
     const Eigen::Vector2d dq = frame_.q.col(a).head<2>() - frame_.q.col(b).head<2>();
-    const Eigen::Vector2d za = B(a).leftCols<2>().partialPivLu().solve(dq);
-    const Eigen::Vector2d zb = -B(b).leftCols<2>().partialPivLu().solve(dq);
+    const Eigen::Vector2d za = B(a).template leftCols<2>().partialPivLu().solve(dq);
+    const Eigen::Vector2d zb = -B(b).template leftCols<2>().partialPivLu().solve(dq);
     double lo = -kInf;
     double hi = kInf;
     for (const auto& [k, z] : {std::pair{a, za}, std::pair{b, zb}}) {
@@ -434,5 +509,16 @@ void Solver::fit_static_forces(const detail::Psd3& static_solver, const Eigen::V
     worst = worst > 1.0 + 1e-14 ? worst : 0.0;
   }
 }
+
+// The members coulomb.cpp calls (which instantiates the class itself); the rest follow from them.
+template void Solver<false>::path(Eigen::Vector3d, Sums&, double);
+template void Solver<true>::path(Eigen::Vector3d, Sums&, double);
+template bool Solver<false>::polish(Eigen::Vector3d&, double, Dual&);
+template bool Solver<true>::polish(Eigen::Vector3d&, double, Dual&);
+template int Solver<false>::classify(double);
+template int Solver<true>::classify(double);
+template void Solver<false>::zero_static_duals();
+template void Solver<true>::zero_static_duals();
+template bool Solver<true>::find_anchor(Eigen::Vector3d);
 
 }  // namespace slipwalk::friction::coulomb

@@ -1,8 +1,11 @@
 #pragma once
-// Internal to friction/: the Coulomb solver (friction::solve_coulomb). The algorithm, the dual
-// and the certificate are described in coulomb.cpp (the fast path, the answer) and
-// coulomb_path.cpp (the smoothing path and its active-set polish, the fallback); this header
-// holds what both share: the per-foot rows, the passes over the feet and the solver's state.
+// Internal to friction/: the Coulomb solver (friction::solve_coulomb, solve_coulomb_loaded). The
+// algorithm, the dual and the certificate are described in coulomb.cpp (the fast path, the
+// answer, the load) and coulomb_path.cpp (the smoothing path and its active-set polish, the
+// fallback); this header holds what both share: the per-foot rows, the passes over the feet and
+// the solver's state. A planar load on the body (kLoaded) adds the linear term −f̃ᵀy to every pass
+// and anchors the certificate at a balanced dual point inside the disks (Interior); without it
+// none of that code exists (if constexpr), so the flat solve is unchanged.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -19,6 +22,7 @@ inline constexpr double kBig = 1e300;  // ‖r‖² of a foot a pass does not vi
 inline constexpr int kSlip = 0;
 inline constexpr int kStatic = 1;
 inline constexpr int kInactive = -1;
+using Mat23 = Eigen::Matrix<double, 2, 3>;
 
 /// The sums of one pass over the feet at a point y with smoothing δ (δ = 0: the exact D).
 struct Sums {
@@ -58,6 +62,20 @@ struct StaticDual {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< Σ B_sᵀ λ_s
 };
 
+/// A dual point that balances the load strictly inside the disks (loaded solves only): certificates
+/// whose candidate leaves its disks are mixed with it instead of scaled toward 0 (which would no
+/// longer balance the load; coulomb.cpp, "The load"). Either the c-weighted balance of the load,
+/// λ⁰_k = B_k μ/c_k with M₁ μ = f̃, or the smoothing path's corrected dual at (y, δ²),
+/// λ⁰_k = r_k(y)/√(‖r_k(y)‖² + δ²) − B_k μ.
+struct Interior {
+  bool path = false;
+  Eigen::Vector3d y = Eigen::Vector3d::Zero();
+  double d2 = 1.0;
+  Eigen::Vector3d mu = Eigen::Vector3d::Zero();
+  double rho = 0.0;    ///< max_k ‖λ⁰_k‖ (< 1 for a usable anchor)
+  double value = 0.0;  ///< Σ λ⁰_kᵀ d_k
+};
+
 /// What finish_pass() sums.
 struct FinishSums {
   double primal = 0.0;                              ///< D(y)
@@ -77,11 +95,14 @@ bool kink_step(const Eigen::Vector3d& g, const Eigen::Matrix3d& H,
 /// Solves M x = b for a symmetric positive definite M (false unless it is; coulomb.cpp).
 bool solve_spd3(const Eigen::Matrix3d& M, const Eigen::Vector3d& b, double tol, Eigen::Vector3d& x);
 
-/// One solve: solve_coulomb() constructs it on the stack and calls run().
+/// One solve: solve_coulomb() constructs it on the stack and calls run(); solve_coulomb_loaded()
+/// constructs Solver<true> with the load (F_x, F_y, M_z), body frame.
+template <bool kLoaded>
 class Solver {
  public:
-  Solver(const contact::Robot& robot, contact::Frame& frame, const CoulombOptions& options)
-      : robot_(robot), frame_(frame), options_(options) {}
+  Solver(const contact::Robot& robot, contact::Frame& frame, const CoulombOptions& options,
+         const Eigen::Vector3d& load = Eigen::Vector3d::Zero())
+      : robot_(robot), frame_(frame), options_(options), load_raw_(load) {}
 
   /// Writes frame.v_body, frame.Fxy and frame.friction (coulomb.cpp).
   void run();
@@ -142,7 +163,8 @@ class Solver {
     return out;
   }
 
-  /// Σ √(‖r_k(y)‖² + δ²) over the visited feet (kAll: all with friction, else the sliding ones).
+  /// Σ √(‖r_k(y)‖² + δ²) over the visited feet (kAll: all with friction, else the sliding ones),
+  /// minus the load's power f̃ᵀy when loaded: the objective Φ_δ.
   template <bool kAll>
   double value(const Eigen::Vector3d& y, double d2) {
     const Rows R = rows(kAll);
@@ -154,10 +176,15 @@ class Solver {
       const A2 r1 = R.at(1, j) * y0 + R.at(3, j) * y1 + R.at(5, j) * y2 + R.at(7, j);
       f += m * (r0 * r0 + r1 * r1 + d2).sqrt();
     }
-    return f.sum();
+    if constexpr (kLoaded) {
+      return f.sum() - load_.dot(y);
+    } else {
+      return f.sum();
+    }
   }
 
-  /// The Sums of D_δ over the visited feet at y (one pass, the solver's cost); leaves ‖r_k‖² of
+  /// The Sums of D_δ over the visited feet at y (one pass, the solver's cost; loaded: of
+  /// Φ_δ = D_δ − f̃ᵀy, so f and g carry the load's power and −f̃); leaves ‖r_k‖² of
   /// every foot in the row r2. With δ = 0 the Hessian term is t_k t_kᵀ/‖r_k‖
   /// (t_k = B_kᵀ n_k⊥); a visited foot with r_k = 0 then gives r2_min = 0 and a non-finite H,
   /// which the caller rejects.
@@ -225,10 +252,64 @@ class Solver {
     S.rho_max = rho_max.maxCoeff();
     S.r2_min = r2_min.minCoeff();
     S.g << g0.sum(), g1.sum(), g2.sum();
+    if constexpr (kLoaded) {
+      S.f -= load_.dot(y);
+      S.g -= load_;
+    }
     const double H00 = h00.sum(), H01 = h01.sum(), H02 = h02.sum();
     const double H11 = h11.sum(), H12 = h12.sum(), H22 = h22.sum();
     S.H << H00, H01, H02, H01, H11, H12, H02, H12, H22;
   }
+
+  // ---- the load (coulomb.cpp) ---------------------------------------------------------------
+  /// The dissipation D(y) from the objective's value Φ(y) at y (Φ itself when unloaded).
+  [[nodiscard]] double dissipation(double phi, const Eigen::Vector3d& y) const {
+    if constexpr (kLoaded) {
+      return phi + load_.dot(y);
+    } else {
+      (void)y;
+      return phi;
+    }
+  }
+  /// The size of the terms that make up Φ(y) = D(y) − f̃ᵀy, D(y) + |f̃ᵀy| (Φ = D unloaded): its
+  /// rounding is ε times this, whatever the sign of Φ.
+  [[nodiscard]] double rounding_scale(double phi, const Eigen::Vector3d& y) const {
+    if constexpr (kLoaded) {
+      const double power = load_.dot(y);
+      return phi + power + std::abs(power);
+    } else {
+      (void)y;
+      return phi;
+    }
+  }
+  /// The scaled load f̃ and the anchor λ⁰ = c-weighted balance of it (one pass); false when the
+  /// load cannot be held, with the recession slope in sliding_ (a translation along the load
+  /// that all feet together cannot resist, or a load no contact feels).
+  bool setup_load();
+  /// The recession slope ρ(e) = Σ_k ‖B_k e‖ − f̃ᵀe of Φ along a unit direction e (one pass).
+  [[nodiscard]] double recession(const Eigen::Vector3d& e) const;
+  /// Loaded: whether y has run away (‖y‖ > 10⁸ V) along a direction of unbounded descent; the
+  /// slope goes to sliding_.
+  bool ran_away(const Eigen::Vector3d& y);
+  /// No quasi-static balance: v_body = 0, no forces, the recession slope as the certificate.
+  void report_sliding();
+  /// Mixes the balanced candidate in work_2n (largest norm m > 1) with the anchor so that every
+  /// λ_k lies in its disk: rewrites work_2n, Fxy, `sum` (without the load) and `value`; false
+  /// when there is no anchor inside the disks.
+  bool mix(double m, detail::BalanceSum& sum, double& value);
+  /// Loaded, the c-weighted anchor not inside the disks (near the holding limit): Newton's method
+  /// on the smoothing Φ_δ at a fixed δ (D(start)/N, the start's mean slip) to its minimizer, whose
+  /// corrected dual r_k/ρ_k is strictly inside the disks and becomes the anchor (coulomb_path.cpp).
+  /// False when Φ_δ runs away along a direction of unbounded descent (sliding_ set), or no anchor
+  /// was found (sliding_ stays 0: the load is at its holding limit to rounding).
+  bool find_anchor(Eigen::Vector3d y);
+  /// Loaded, the feet at rest: y = 0 with the anchor's forces (finish()).
+  void hold_at_rest();
+  /// The anchor's λ⁰_k.
+  [[nodiscard]] Eigen::Vector2d interior(int k) const;
+  /// Loaded: the smoothing path's corrected dual at (y, δ) as the anchor if it lies deeper inside
+  /// the disks than the current one (one pass).
+  void adopt_interior(const Eigen::Vector3d& y, const Sums& S, double delta);
 
   // ---- the fast path and the answer (coulomb.cpp) ----------------------------------------------
   /// Newton's method on the exact D from y (S: its sums over every foot, all sliding), with the
@@ -243,10 +324,14 @@ class Solver {
   /// false (y moved downhill, states arbitrary) when the model degenerates or stops converging: the
   /// smoothing path takes over.
   bool kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual);
+  /// The sliding foot whose slip the step p from y changes most relative to its size, if that is
+  /// more than 1 (the step crosses its kink), else −1 (one pass; after a failed line search).
+  [[nodiscard]] int most_crossed(const Eigen::Vector3d& y, const Eigen::Vector3d& p) const;
   /// The relative gap of a dual candidate of value `value`, imbalance h and largest ‖λ_k‖ lmax,
-  /// against the primal `primal` (an upper bound of D(y) will do).
-  [[nodiscard]] double bound(double primal, double value, double lmax,
-                             const Eigen::Vector3d& h) const;
+  /// against the primal `primal` at y (an upper bound of Φ(y) will do): the candidate balanced by
+  /// M₂'s correction, then scaled into the disks (unloaded) or mixed with the anchor (loaded).
+  [[nodiscard]] double bound(double primal, double value, double lmax, const Eigen::Vector3d& h,
+                             const Eigen::Vector3d& y) const;
   /// The pass of finish(), two feet per step like assemble(): λ_k of the candidate (kPath: the
   /// smoothing path's r_k/ρ_k; else the linearized n_k + n_k⊥ (t_kᵀp)/‖r_k‖ for sliding feet,
   /// work_2n for static ones and the kink foot), balanced (λ_k −= B_k μ) and written back to
@@ -323,6 +408,11 @@ class Solver {
   contact::Frame& frame_;
   detail::Contacts cs_;  ///< filled by setup()
   CoulombOptions options_;
+  Eigen::Vector3d load_raw_;                        ///< (F_x, F_y, M_z), N, N, N m
+  Eigen::Vector3d load_ = Eigen::Vector3d::Zero();  ///< f̃ = (F_x, F_y, M_z / L)
+  Interior anchor_;                                 ///< loaded: λ⁰
+  double V_ = 0.0;                                  ///< loaded: velocity scale (runaway test)
+  double sliding_ = 0.0;                            ///< loaded: recession slope < 0 once found
   detail::Psd3 dual_;     ///< M₂ = Σ B_kᵀB_k (least norm on its range)
   detail::Psd3 viscous_;  ///< M₁, the viscous-Coulomb system
   Eigen::Matrix3d M1_ = Eigen::Matrix3d::Zero();

@@ -75,9 +75,10 @@ void solve_coulomb(const contact::Robot& robot, contact::Frame& frame,
 /// converged = false, a message starting with "sliding", and friction.certificate = the
 /// recession slope Σ μ_k F_z,k ‖W_k J_k d‖ − fᵀ d < 0 of a unit direction d that proves it.
 /// Otherwise as solve_coulomb: Fxy balance the load to rounding and lie in their ellipses, and
-/// certificate is the relative duality gap. A load of exactly zero is solve_coulomb itself; else
-/// the algorithm (smoothing path and polish, coulomb_loaded.cpp) is a plain reference, slower
-/// than solve_coulomb's fast path, used only where a load is present.
+/// certificate is the relative duality gap (D(v) − fᵀv − Σ F_k·(−q̇_k)) / max(D(v), D(0)). One
+/// algorithm for both: solve_coulomb's, with the load's linear term in every pass and its
+/// certificates anchored at a balanced point inside the ellipses (friction/coulomb.cpp, "The
+/// load"). A load of exactly zero is solve_coulomb itself, bit for bit.
 void solve_coulomb_loaded(const contact::Robot& robot, contact::Frame& frame,
                           const Eigen::Vector3d& load, const CoulombOptions& options = {});
 
