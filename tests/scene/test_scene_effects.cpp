@@ -355,7 +355,7 @@ TEST(SceneEffects, ResidualAddsBTimesQdot) {
     const Frame& f = frames[i];
     Eigen::VectorXd qdot(12);
     for (int k = 0; k < 6; ++k) {
-      qdot.segment<2>(2 * k) = f.qdot.col(k).head<2>();
+      qdot.segment<2>(2 * static_cast<Eigen::Index>(k)) = f.qdot.col(k).head<2>();
     }
     const Eigen::Vector3d expected = f.v_model + scene.residual->B * qdot;
     EXPECT_LE((f.v_body - expected).norm(), 1e-15 * (1.0 + expected.norm())) << i;
@@ -439,7 +439,7 @@ TEST(SceneEffects, ResidualFileErrorsNameFileAndLine) {
       (void)read_scene(path);
       ADD_FAILURE() << text;
     } catch (const core::InputError& e) {
-      const std::string where = e.where();
+      const std::string& where = e.where();
       const std::string expected = at.rfind("B:", 0) == 0
                                        ? (tmp.dir / "small.csv").string() + at.substr(1)
                                        : path + ":" + at;
