@@ -11,8 +11,8 @@
 
 namespace slipwalk::scene {
 
-/// [friction] w with law = "anisotropic" (eq. 3.19, H ∝ I + w wᵀ in the body frame): one pair
-/// [wx, wy] for every leg (2 x 1), or one pair per leg [[wx, wy], ...] (2 x legs).
+/// [friction] w with law = "anisotropic" or "coulomb" (eq. 3.19, H ∝ I + w wᵀ in the body frame):
+/// one pair [wx, wy] for every leg (2 x 1), or one pair per leg [[wx, wy], ...] (2 x legs).
 [[nodiscard]] Eigen::Matrix2Xd read_anisotropy(const TableReader& friction, const toml::node& node,
                                                int legs);
 

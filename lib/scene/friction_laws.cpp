@@ -23,6 +23,34 @@ bool contains(const std::vector<std::string_view>& list, std::string_view word) 
   return std::find(list.begin(), list.end(), word) != list.end();
 }
 
+// The anisotropy w of eq. 3.19 (H ∝ I + w wᵀ; Coulomb's ellipse Fᵀ G⁻¹ F ≤ (μ F_z)², G = I + w wᵀ),
+// shared by the laws that take it: one reader, one JSON form, one way onto the robot. An effect
+// without w (0 columns) leaves the robot isotropic.
+
+void w_json(const FrictionEffect& effect, nlohmann::json& out) {
+  if (effect.w.cols() == 0) {
+    return;
+  }
+  nlohmann::json w = nlohmann::json::array();
+  for (Eigen::Index k = 0; k < effect.w.cols(); ++k) {
+    w.push_back({effect.w(0, k), effect.w(1, k)});
+  }
+  out["w"] = w;
+}
+
+void fit_w(const FrictionEffect& effect, contact::Robot& robot) {
+  if (effect.w.cols() == 0) {
+    return;
+  }
+  // One w for every leg, or one per leg (the reader checked the count).
+  if (effect.w.cols() == 1) {
+    robot.w = effect.w.replicate(1, robot.legs());
+  } else {
+    robot.w = effect.w;
+  }
+  contact::validate(robot);
+}
+
 }  // namespace
 
 const std::vector<FrictionLawEntry>& friction_laws() {
@@ -52,36 +80,25 @@ const std::vector<FrictionLawEntry>& friction_laws() {
               [](const TableReader& friction, int legs, FrictionEffect& effect) {
                 effect.w = read_anisotropy(friction, friction.required("w"), legs);
               },
-          .to_json =
-              [](const FrictionEffect& effect, json& out) {
-                json w = json::array();
-                for (Eigen::Index k = 0; k < effect.w.cols(); ++k) {
-                  w.push_back({effect.w(0, k), effect.w(1, k)});
-                }
-                out["w"] = w;
-              },
+          .to_json = &w_json,
           .policy = [](const FrictionEffect&) -> LawPolicy {
             return connection::ViscousCoulombKernel{};
           },
-          .fit_robot =
-              [](const FrictionEffect& effect, contact::Robot& robot) {
-                // One w for every leg, or one per leg (the reader checked the count).
-                if (effect.w.cols() == 1) {
-                  robot.w = effect.w.replicate(1, robot.legs());
-                } else {
-                  robot.w = effect.w;
-                }
-                contact::validate(robot);
-              },
+          .fit_robot = &fit_w,
       },
-      // Classical Coulomb friction (§3.4), the reference, solved to a relative duality gap.
+      // Classical Coulomb friction (§3.4), the reference, solved to a relative duality gap;
+      // optionally anisotropic (the friction ellipses of eq. 3.19's G = I + w wᵀ, the same w as
+      // the anisotropic viscous law). `anisotropic` stays false: it names the viscous entry.
       {
           .name = "coulomb",
           .law = FrictionLaw::kCoulomb,
           .anisotropic = false,
-          .keys = {"tol", "max_iterations"},
+          .keys = {"tol", "max_iterations", "w"},
           .read =
-              [](const TableReader& friction, int, FrictionEffect& effect) {
+              [](const TableReader& friction, int legs, FrictionEffect& effect) {
+                if (const toml::node* w = friction.find("w")) {
+                  effect.w = read_anisotropy(friction, *w, legs);
+                }
                 friction.read_in("tol", ranges::kCoulombTolerance, effect.coulomb.tol);
                 if (const toml::node* n = friction.find("max_iterations")) {
                   const long long m = friction.integer(*n, "max_iterations");
@@ -94,11 +111,12 @@ const std::vector<FrictionLawEntry>& friction_laws() {
               [](const FrictionEffect& effect, json& out) {
                 out["tol"] = effect.coulomb.tol;
                 out["max_iterations"] = effect.coulomb.max_iterations;
+                w_json(effect, out);
               },
           .policy = [](const FrictionEffect& effect) -> LawPolicy {
             return connection::CoulombKernel{effect.coulomb};
           },
-          .fit_robot = &robot_as_is,
+          .fit_robot = &fit_w,
       },
   };
   return laws;

@@ -34,9 +34,11 @@
 //   law = "viscous"          # "viscous" (viscous-Coulomb) | "anisotropic" | "coulomb"
 //   # tol = 1e-10            # coulomb only: the relative duality gap to reach
 //   # max_iterations = 500   # coulomb only
-//   # w = [0.5, 0.0]         # anisotropic only, required: eq. 3.19's w (body frame, one pair for
-//                            # every leg) or [[wx, wy], ...] one pair per leg; viscous-Coulomb
-//                            # with H_k ∝ I + w_k w_kᵀ
+//   # w = [0.5, 0.0]         # anisotropic (required) and coulomb (optional; absent = isotropic):
+//                            # eq. 3.19's w (body frame, one pair for every leg) or [[wx, wy],
+//                            # ...] one pair per leg; viscous-Coulomb with H_k ∝ I + w_k w_kᵀ, or
+//                            # Coulomb with the friction ellipses Fᵀ G_k⁻¹ F ≤ (μ_k F_z,k)²,
+//                            # G_k = I + w_k w_kᵀ (the same w, the same ellipse)
 //
 //   [filter]                 # optional effect: present = on (§3.5.2.2)
 //   gamma = 0.15             # [0, 1), per step; default 0.15
@@ -78,7 +80,8 @@ struct FrictionEffect {
   connection::FrictionLaw law = connection::FrictionLaw::kViscousCoulomb;
   friction::CoulombOptions coulomb;  ///< used by the coulomb law only
   bool anisotropic = false;          ///< law = "anisotropic": viscous-Coulomb with w (eq. 3.19)
-  Eigen::Matrix2Xd w;                ///< (2 x 1): one w for every leg, or (2 x N): per leg
+  Eigen::Matrix2Xd w;                ///< (2 x 1): one w for every leg, or (2 x N): per leg;
+                                     ///< (2 x 0): none (isotropic; coulomb without w)
 };
 
 struct FilterEffect {

@@ -201,13 +201,6 @@ SceneJob parse_scene_entry(const toml::table& t, const std::filesystem::path& di
   scene::Scene& sc = job.scene;
   if (nodes.count("law")) {
     const std::string law = text(*nodes["law"], "law", path);
-    if (sc.friction.anisotropic) {
-      // Its w would be a parameter of a law no longer chosen (as in the scene file itself).
-      throw InputError(where["law"],
-                       "law: the scene's law is 'anisotropic' (with w); the law "
-                       "override switches isotropic scenes between viscous and "
-                       "coulomb");
-    }
     // The isotropic laws of the scene format's table: those an override may switch between.
     std::vector<std::string_view> names;
     for (const scene::FrictionLawEntry& entry : scene::friction_laws()) {
@@ -225,7 +218,15 @@ SceneJob parse_scene_entry(const toml::table& t, const std::filesystem::path& di
       }
       throw InputError(where["law"], message);
     }
+    // The scene's w stays (as if its file named this law), so the law must take it: an
+    // anisotropic scene may switch to Coulomb with the same ellipses, not to isotropic viscous.
+    if (sc.friction.w.cols() > 0 &&
+        std::find(entry->keys.begin(), entry->keys.end(), "w") == entry->keys.end()) {
+      throw InputError(where["law"], "law: the scene gives w (anisotropy), which the law '" + law +
+                                         "' does not take");
+    }
     sc.friction.law = entry->law;
+    sc.friction.anisotropic = entry->anisotropic;
   }
   if (nodes.count("filter")) {
     const auto* on = nodes["filter"]->as_boolean();

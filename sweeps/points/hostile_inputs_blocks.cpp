@@ -166,7 +166,8 @@ std::vector<std::vector<Table>> scene_templates() {
       {{"[robot]", {{"name", "\"bigant\""}}},
        {"[gait]", {{"kind", "\"tripod\""}, {"frequency", "0.5"}, {"steer", "0.1"}}},
        run,
-       {"[friction]", {{"law", "\"coulomb\""}, {"tol", "1e-10"}, {"max_iterations", "500"}}},
+       {"[friction]",
+        {{"law", "\"coulomb\""}, {"tol", "1e-10"}, {"max_iterations", "500"}, {"w", "[0.3, 0.1]"}}},
        {"[filter]", {{"gamma", "0.15"}}},
        {"[noise]", {{"sigma", "0.001"}, {"sigma_theta", "0.01"}, {"seed", "3"}}}});
   out.push_back({{"[robot]", {{"name", "\"bigant\""}}},

@@ -1,7 +1,8 @@
 // Cost per frame of the friction balance (§3.4) with contact and F_z given: viscous-Coulomb (aim:
 // ≤ 1 µs for a hexapod), the local connection A, the ε-law and classical Coulomb to a relative
 // duality gap of 1e-9 (aim: ≤ 10 µs and ≤ 10× viscous), for 3…50 legs (aim: ≤ ×2 from 3 to 50
-// legs); and the whole frame (connection::evaluate: spring support, A, friction
+// legs); Coulomb on a 17° slope beside the flat hexapod (aim: ≤ 1.5× flat); and the whole
+// frame (connection::evaluate: spring support, A, friction
 // law) and the spring support alone, the rows Fig. 3.13a times. Robots as in thesis §3.5.3 /
 // Fig. 3.13: a disk of radius 0.3 m with N legs equally spaced on the rim; 4096 random poses and
 // velocities per N, all feet on the ground with random loads (for the whole frame: random leg
@@ -13,6 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -20,6 +22,7 @@
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
 #include "friction/solvers.hpp"
+#include "terrain/terrain.hpp"
 
 namespace {
 
@@ -83,6 +86,8 @@ void run(benchmark::State& state, Pool& pool, Solve solve) {
   double contacts = 0.0;
   double newton = 0.0;
   double steps = 0.0;
+  double sliding = 0.0;
+  double fallback = 0.0;
   long long calls = 0;
   Frame& f = pool.frame;
   for (auto _ : state) {
@@ -97,6 +102,9 @@ void run(benchmark::State& state, Pool& pool, Solve solve) {
     contacts += static_cast<double>(std::count(f.contact.begin(), f.contact.end(), 1));
     newton += f.support.route == slipwalk::contact::SupportSummary::Route::kNewton ? 1.0 : 0.0;
     steps += f.support.newton_steps;
+    sliding += f.friction.message.rfind("sliding", 0) == 0 ? 1.0 : 0.0;
+    fallback +=
+        f.friction.route == slipwalk::contact::FrictionSummary::Route::kFallback ? 1.0 : 0.0;
     ++calls;
   }
   const double c = calls > 0 ? static_cast<double>(calls) : 1.0;
@@ -108,6 +116,8 @@ void run(benchmark::State& state, Pool& pool, Solve solve) {
   state.counters["contacts"] = contacts / c;  // feet on the ground
   state.counters["newton"] = newton / c;      // support certified by the Newton route
   state.counters["steps"] = steps / c;        // its Newton steps (also when it handed over)
+  state.counters["sliding"] = sliding / c;    // Coulomb under a load it cannot hold
+  state.counters["fallback"] = fallback / c;  // Coulomb through the fallback route
 }
 
 void BM_CopyInputs(benchmark::State& state) {
@@ -157,20 +167,24 @@ void BM_CoulombAnisotropic1e9(benchmark::State& state) {
 /// hexapod (feet jittered about x ∈ {−0.3, 0, 0.3} m, y = ±0.2 m, about half lifted), the spring
 /// support deciding which feet are down and their loads (3–6, often one foot that Coulomb
 /// friction holds still), feet sliding backward at ~0.1 m/s plus a turn. The rows the study's
-/// hexapod ratio comes from; the all-feet-down disks above have fewer static feet.
-Pool make_supported_hexapod_pool() {
+/// hexapod ratio comes from; the all-feet-down disks above have fewer static feet. On a slope of
+/// σ rad the support carries Mg cos σ, as connection::SlopeGround's does (σ = 0: the same frames).
+Pool make_supported_hexapod_pool(double slope = 0.0) {
   const double Mg = 8.18 * 9.81;
   Pool p(slipwalk::contact::uniform_robot(6, Mg / (6 * 0.01), 1.0, Mg));
+  Robot support = p.robot;
+  support.Mg = Mg * std::cos(slope);
   std::mt19937 rng(3000);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   std::normal_distribution<double> N(0.0, 1.0);
   Frame& f = p.frame;
   while (p.inputs.size() < kInputs) {
     for (int k = 0; k < 6; ++k) {
-      f.q.col(k) << 0.3 * (k / 2 - 1) + 0.02 * U(rng), (k % 2 == 0 ? 0.2 : -0.2) + 0.02 * U(rng),
+      const int row = k / 2 - 1;  // the pair of legs: back, middle, front
+      f.q.col(k) << 0.3 * row + 0.02 * U(rng), (k % 2 == 0 ? 0.2 : -0.2) + 0.02 * U(rng),
           -0.1 + 0.002 * U(rng) + (U(rng) < 0.0 ? 0.0225 + 0.0175 * U(rng) : 0.0);
     }
-    slipwalk::contact::spring_support(p.robot, f);
+    slipwalk::contact::spring_support(support, f);
     if (f.support.status != slipwalk::contact::SupportSummary::Status::kBalanced) {
       continue;
     }
@@ -196,6 +210,20 @@ void BM_CoulombSupportedHexapod1e9(benchmark::State& state) {
   opt.tol = 1e-9;
   run(state, pool,
       [&opt](const Robot& r, Frame& f) { slipwalk::friction::solve_coulomb(r, f, opt); });
+}
+
+/// The same hexapod uphill on §5.2.1's 17° slope (heading 0, yaw 0): gravity's planar part
+/// Mg sin σ pulls backward (terrain::slope_load), about 30 % of what the feet can hold
+/// (μ Mg cos σ); certified like the flat row, which runs beside it for the ratio slope/flat.
+void BM_CoulombSlopeHexapod1e9(benchmark::State& state) {
+  const slipwalk::terrain::Slope slope{17.0 * M_PI / 180.0, 0.0, 0.0};
+  Pool pool = make_supported_hexapod_pool(slope.angle);
+  const Eigen::Vector3d load = slipwalk::terrain::slope_load(slope, pool.robot.Mg, 0.0);
+  slipwalk::friction::CoulombOptions opt;
+  opt.tol = 1e-9;
+  run(state, pool, [&opt, &load](const Robot& r, Frame& f) {
+    slipwalk::friction::solve_coulomb_loaded(r, f, load, opt);
+  });
 }
 
 /// The whole frame: leg heights vary by ±1 cm around −0.1 m (stiffness 1000 N/m, weight 10 N:
@@ -242,6 +270,7 @@ BENCHMARK(BM_Coulomb1e9)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombAnisotropic1e9)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ViscousSupportedHexapod)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombSupportedHexapod1e9)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_CoulombSlopeHexapod1e9)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_SpringSupport)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelViscous)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelCoulomb)->LEGS->Unit(benchmark::kNanosecond);

@@ -1,7 +1,9 @@
 // The optional effects of a scene: anisotropic friction, the residual B of §5.3.1 and measurement
 // noise. Oracles: every parser error names file:line:col (residual files file:line[:col]);
 // effects switched off or neutral (w = 0, B = 0, σ = 0) are bit-identical to the plain kernel;
-// the anisotropic forces are eq. 3.19's H u recomputed from the reported slip; the residual adds
+// the anisotropic forces are eq. 3.19's H u recomputed from the reported slip, and anisotropic
+// Coulomb's are solve_coulomb's on the robot with that w, on the rim of the same ellipse along the
+// same direction (sliding feet) or inside it (static ones); the residual adds
 // exactly B·vec(q̇) to the balance's velocity; the noise is the same for a seed, other for another
 // seed, has mean ≈ 0 and recovers σ, and leaves the simulated motion untouched.
 #include <gtest/gtest.h>
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "friction/solvers.hpp"
 #include "scene/effects.hpp"
 #include "scene/reference_kernel.hpp"
 #include "scene/run_writer.hpp"
@@ -33,6 +36,8 @@ std::string scene_text(const std::string& friction, const std::string& effects =
 
 const std::string kViscous = "law = \"viscous\"";
 const std::string kAnisotropic = "law = \"anisotropic\"\nw = [0.8, 0.3]";
+const std::string kCoulomb = "law = \"coulomb\"";
+const std::string kAnisotropicCoulomb = "law = \"coulomb\"\nw = [0.8, 0.3]";
 
 /// Lines before `needle` in `text`, plus one: the line `needle` is on.
 int line_of(const std::string& text, const std::string& needle) {
@@ -197,10 +202,117 @@ TEST(SceneEffects, AnisotropicForcesAreHTimesSlip) {
   EXPECT_GT(change, 0.01 * size);
 }
 
+// ---- anisotropic Coulomb friction (eq. 3.19's ellipse, §3.4) ----------------------------------
+
+TEST(SceneEffects, CoulombReadsOneOrPerLegWAndRecordsItInTheSidecar) {
+  const Scene one = parse_scene(scene_text(kAnisotropicCoulomb), "s.toml");
+  EXPECT_EQ(one.friction.law, connection::FrictionLaw::kCoulomb);
+  ASSERT_EQ(one.friction.w.cols(), 1);
+  const Simulator sim = compose(one);
+  EXPECT_EQ(sim.kernel_name, "coulomb");
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_EQ(sim.walker.robot.w.col(k), Eigen::Vector2d(0.8, 0.3));
+  }
+  const Scene per_leg = parse_scene(
+      scene_text("law = \"coulomb\"\nw = [[0.8, 0.3], [0.8, 0.3], [0.8, 0.3], [0.8, 0.3], "
+                 "[0.8, 0.3], [0.8, 0.3]]"),
+      "s.toml");
+  EXPECT_EQ(per_leg.friction.w.cols(), 6);
+  expect_same_motion(run(one), run(per_leg));
+  EXPECT_EQ(to_json(one)["friction"]["law"], "coulomb");
+  EXPECT_EQ(to_json(one)["friction"]["w"][0][0], 0.8);
+  EXPECT_EQ(to_json(one)["friction"]["w"][0][1], 0.3);
+  // Without w the sidecar says nothing of it, and the robot stays isotropic.
+  const Scene plain = parse_scene(scene_text(kCoulomb), "s.toml");
+  EXPECT_FALSE(to_json(plain)["friction"].contains("w"));
+  EXPECT_TRUE(compose(plain).walker.robot.w.isZero(0.0));
+}
+
+TEST(SceneEffects, CoulombWithZeroWIsTheIsotropicCoulombRunBitForBit) {
+  // w = 0 is the isotropic ellipse (the disk) of eq. 3.19.
+  expect_same_motion(run(parse_scene(scene_text("law = \"coulomb\"\nw = [0, 0]"), "s.toml")),
+                     run(parse_scene(scene_text(kCoulomb), "s.toml")));
+}
+
+TEST(SceneEffects, AnisotropicCoulombFramesAreSolveCoulombOnTheRobotWithThatW) {
+  // Each frame's friction, recomputed here from its inputs (q, q̇, contact, F_z) by
+  // solve_coulomb on the isotropic scene's robot with w set by hand, is the scene's bit for bit;
+  // and the run differs from the isotropic one (the effect is really on).
+  const Scene scene = parse_scene(scene_text(kAnisotropicCoulomb), "s.toml");
+  const Simulator sim = compose(scene);
+  contact::Robot robot = compose(parse_scene(scene_text(kCoulomb), "s.toml")).walker.robot;
+  robot.w.setZero(2, robot.legs());
+  robot.w.colwise() += Eigen::Vector2d(0.8, 0.3);
+  long long frames = 0;
+  (void)sim.run([&](const connection::TrajectoryStep& s) {
+    contact::Frame f(robot);
+    f.q = s.frame.q;
+    f.qdot = s.frame.qdot;
+    f.contact = s.frame.contact;
+    f.Fz = s.frame.Fz;
+    friction::solve_coulomb(robot, f, scene.friction.coulomb);
+    EXPECT_EQ(f.v_body, s.v_model) << s.n;
+    EXPECT_EQ(f.Fxy, s.frame.Fxy) << s.n;
+    EXPECT_TRUE(s.frame.friction.converged) << s.n << ": " << s.frame.friction.message;
+    ++frames;
+  });
+  EXPECT_EQ(frames, sim.options.steps + 1);
+  const std::vector<Frame> iso = run(parse_scene(scene_text(kCoulomb), "s.toml"));
+  const std::vector<Frame> aniso = run(scene);
+  double change = 0.0;
+  double size = 0.0;
+  for (std::size_t i = 0; i < iso.size(); ++i) {
+    change = std::max(change, (aniso[i].v_body - iso[i].v_body).norm());
+    size = std::max(size, iso[i].v_body.norm());
+  }
+  EXPECT_GT(change, 0.01 * size);
+}
+
+TEST(SceneEffects, AnisotropicCoulombAndAnisotropicViscousHonourTheSameEllipse) {
+  // Eq. 3.19 with G = I + w wᵀ: the viscous law of the anisotropic scene is F = −c G u; Coulomb
+  // with the same w puts a sliding foot's force on the rim of the ellipse Fᵀ G⁻¹ F = c² along
+  // that same direction, F = −c G u / ‖W u‖ (‖W u‖² = uᵀ G u), and a static foot's inside it.
+  const Scene coulomb = parse_scene(scene_text(kAnisotropicCoulomb), "s.toml");
+  const Scene viscous = parse_scene(scene_text(kAnisotropic), "s.toml");
+  const Simulator sim = compose(coulomb);
+  ASSERT_EQ(sim.walker.robot.w, compose(viscous).walker.robot.w);
+  const Eigen::Vector2d w(0.8, 0.3);
+  const Eigen::Matrix2d G = Eigen::Matrix2d::Identity() + w * w.transpose();
+  const Eigen::Matrix2d Ginv =
+      Eigen::Matrix2d::Identity() - w * w.transpose() / (1.0 + w.squaredNorm());
+  int sliding = 0;
+  int held = 0;
+  (void)sim.run([&](const connection::TrajectoryStep& s) {
+    for (int k = 0; k < s.frame.legs(); ++k) {
+      if (s.frame.contact[static_cast<std::size_t>(k)] == 0) {
+        continue;
+      }
+      const double c = sim.walker.robot.mu(k) * s.frame.Fz(k);
+      const Eigen::Vector2d F = s.frame.Fxy.col(k);
+      const Eigen::Vector2d u = s.slip.col(k);
+      const double rim = F.dot(Ginv * F) / (c * c);
+      EXPECT_LE(rim, 1.0 + 1e-9) << s.n << " " << k;
+      const double Wu = std::sqrt(u.dot(G * u));
+      if (Wu > 1e-6 * (1.0 + s.frame.qdot.col(k).head<2>().norm())) {
+        const Eigen::Vector2d viscous_direction = -c * (G * u);
+        EXPECT_LE((F * Wu - viscous_direction).norm(), 1e-7 * viscous_direction.norm())
+            << s.n << " " << k;
+        EXPECT_NEAR(rim, 1.0, 1e-9) << s.n << " " << k;
+        ++sliding;
+      } else {
+        ++held;
+      }
+    }
+  });
+  EXPECT_GT(sliding, 0);
+  EXPECT_GT(held, 0);  // the tripod's feet that do not slip: the ellipse's inside is used too
+}
+
 TEST(SceneEffects, AnisotropicErrors) {
   const std::string w_given = scene_text("law = \"viscous\"\nw = [0.5, 0]");
-  expect_error(w_given, "s.toml:" + std::to_string(line_of(w_given, "law") + 1) + ":5",
-               "friction.w: a parameter of the anisotropic law, given with law = 'viscous'");
+  expect_error(
+      w_given, "s.toml:" + std::to_string(line_of(w_given, "law") + 1) + ":5",
+      "friction.w: a parameter of the anisotropic and coulomb laws, given with law = 'viscous'");
   const std::string missing = scene_text("law = \"anisotropic\"");
   expect_error(missing, "s.toml:" + std::to_string(line_of(missing, "[friction]")) + ":1",
                "missing required key 'w' in [friction]");
@@ -243,7 +355,7 @@ TEST(SceneEffects, ResidualAddsBTimesQdot) {
     const Frame& f = frames[i];
     Eigen::VectorXd qdot(12);
     for (int k = 0; k < 6; ++k) {
-      qdot.segment<2>(2 * k) = f.qdot.col(k).head<2>();
+      qdot.segment<2>(2 * static_cast<Eigen::Index>(k)) = f.qdot.col(k).head<2>();
     }
     const Eigen::Vector3d expected = f.v_model + scene.residual->B * qdot;
     EXPECT_LE((f.v_body - expected).norm(), 1e-15 * (1.0 + expected.norm())) << i;
@@ -327,7 +439,7 @@ TEST(SceneEffects, ResidualFileErrorsNameFileAndLine) {
       (void)read_scene(path);
       ADD_FAILURE() << text;
     } catch (const core::InputError& e) {
-      const std::string where = e.where();
+      const std::string& where = e.where();
       const std::string expected = at.rfind("B:", 0) == 0
                                        ? (tmp.dir / "small.csv").string() + at.substr(1)
                                        : path + ":" + at;
@@ -478,7 +590,7 @@ TEST(SceneEffects, StepsDoNotAllocateWithEveryEffectOn) {
   // and the last nothing is allocated (the sink itself allocates nothing).
   const TempDir tmp;
   tmp.write("B.csv", residual_csv(0.01));
-  for (const std::string& law : {kAnisotropic, std::string("law = \"coulomb\"")}) {
+  for (const std::string& law : {kAnisotropic, kCoulomb, kAnisotropicCoulomb}) {
     const std::string path =
         tmp.write("s.toml", scene_text(law, "[filter]\n[residual]\nfile = \"B.csv\"\n" +
                                                 noise("sigma = 0.01\nsigma_theta = 0.02") +
@@ -500,21 +612,34 @@ TEST(SceneEffects, StepsDoNotAllocateWithEveryEffectOn) {
   }
 }
 
-TEST(SceneEffects, StudyLawOverrideRefusesAnAnisotropicScene) {
-  // A [[scene]] override equals writing the key in the scene file, where law = "coulomb" next to
-  // w is an error; so is the override.
+TEST(SceneEffects, StudyLawOverrideKeepsTheScenesWAndRefusesALawWithoutIt) {
+  // A [[scene]] override equals writing the key in the scene file: law = "coulomb" next to w is
+  // anisotropic Coulomb (the same ellipses), law = "viscous" next to w an error; so are the
+  // overrides.
   const TempDir tmp;
   std::filesystem::create_directories(tmp.dir / "scenes");
   tmp.write("scenes/a.toml", scene_text(kAnisotropic));
+  tmp.write("scenes/c.toml", scene_text(kAnisotropicCoulomb));
   tmp.write(
       "study.toml",
       "title = \"t\"\n[[scene]]\nname = \"s\"\nfile = \"scenes/a.toml\"\nlaw = \"coulomb\"\n");
-  try {
-    (void)sweeps::load_study(tmp.dir);
-    ADD_FAILURE() << "no error";
-  } catch (const core::InputError& e) {
-    EXPECT_NE(e.where().find("study.toml:5:7"), std::string::npos) << e.where();
-    EXPECT_NE(std::string(e.what()).find("'anisotropic'"), std::string::npos) << e.what();
+  const scene::Scene switched = sweeps::load_study(tmp.dir).scenes.at(0).scene;
+  const scene::Scene written = read_scene(tmp.dir / "scenes/c.toml");
+  EXPECT_EQ(switched.friction.law, connection::FrictionLaw::kCoulomb);
+  EXPECT_FALSE(switched.friction.anisotropic);
+  EXPECT_EQ(switched.friction.w, written.friction.w);
+  expect_same_motion(run(switched), run(written));
+  for (const char* file : {"a.toml", "c.toml"}) {
+    tmp.write("study.toml", std::string("title = \"t\"\n[[scene]]\nname = \"s\"\nfile = "
+                                        "\"scenes/") +
+                                file + "\"\nlaw = \"viscous\"\n");
+    try {
+      (void)sweeps::load_study(tmp.dir);
+      ADD_FAILURE() << "no error for " << file;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(e.where().find("study.toml:5:7"), std::string::npos) << e.where();
+      EXPECT_NE(std::string(e.what()).find("w (anisotropy)"), std::string::npos) << e.what();
+    }
   }
   tmp.write("study.toml", "title = \"t\"\n[[scene]]\nname = \"s\"\nfile = \"scenes/a.toml\"\n");
   EXPECT_TRUE(sweeps::load_study(tmp.dir).scenes.at(0).scene.friction.anisotropic);
