@@ -86,7 +86,7 @@ namespace slipwalk::friction {
 namespace coulomb {
 
 namespace {
-constexpr int kKinkSteps = 20;  // the fast path's steps before the smoothing path takes over
+constexpr int kKinkSteps = 40;  // the fast path's steps before the smoothing path takes over
 // The shortest step the fast path's backtracking tries (halving from 1/2). Far from the optimum
 // the Newton model of a sum of norms can promise more decrease than D itself (it has no
 // curvature along a sliding foot's slip, so a foot whose slip the step reverses is modelled as
@@ -533,8 +533,8 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
   double D = S.f;
   double precision = 1e-3;  // the certificate is tried below precision · tol · D (see kDeepCut)
   int forced = -1;          // a kink foot chosen after a failed line search (below)
-  bool damped = false;      // retry that foot's model with curvature added
-  bool retried = false;     // one retry per point
+  double lm = 0.0;          // curvature of M₂ added to the kink model after failed steps (below)
+  bool retried = false;     // a plain step retried with the foot it crossed
   for (int it = 0;; ++it) {
     // The kink foot: the held one, or the sliding foot slowest in slip speed ‖r_k‖/c_k
     // (found without branches: which foot it is varies from frame to frame).
@@ -563,7 +563,7 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
       st.decrease = -0.5 * g.dot(st.p);
       newton_ok = st.decrease > 0.0;
     }
-    if (!newton_ok || forced >= 0 || damped || (Bk * st.p).squaredNorm() > nr * nr) {
+    if (!newton_ok || forced >= 0 || lm > 0.0 || (Bk * st.p).squaredNorm() > nr * nr) {
       const KinkStep plain = st;
       if (held < 0) {  // take the kink foot's quadratic model out of the sums
         const double inr = 1.0 / nr;
@@ -572,13 +572,14 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
         g -= Bk.transpose() * n;
         H -= (t * inr) * t.transpose();
       }
-      if (damped || !kink_step(g, H, Bk, r, nr, st)) {
+      if (lm > 0.0 || !kink_step(g, H, Bk, r, nr, st)) {
         // A degenerate model: the other sliding feet's quadratic models are flat along their
-        // slip (e.g. only two of them), and with the kink foot sliding it is unbounded there.
-        // The model with a little curvature of M₂ added (a damped step: the line search judges
-        // it, the certificate uses the true H), else the plain step if there is one. (The plain
-        // step alone would cross this foot's kink again and again at a crawl.)
-        const double eps = 1e-2 * H.trace() / M2_.trace();
+        // slip (e.g. only two of them), and with the kink foot sliding it is unbounded there —
+        // or a model whose steps failed (lm > 0). The model with some curvature of M₂ added (a
+        // damped step: the line search judges it, the certificate uses the true H), else the
+        // plain step if there is one. (The plain step alone would cross this foot's kink again
+        // and again at a crawl.)
+        const double eps = std::max(lm, 1e-2) * H.trace() / M2_.trace();
         if (kink_step(g, Eigen::Matrix3d(H + eps * M2_), Bk, r, nr, st)) {
           kink = ks;
         } else if (newton_ok) {
@@ -596,7 +597,10 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
     // Tried once the predicted decrease is below 1e-3 tol D, as the path's polish does: the
     // certificate would often pass earlier, but finish() reports y + p, and this makes that
     // Newton point exact to ~1e-13 (a continuous, mirror-symmetric answer for symmetric gaits).
-    if (st.decrease <= precision * options_.tol * Dref) {
+    // (Or once the decrease is at the rounding of D itself, where no step can take it lower:
+    // with a load, whose power enters D's rounding, a deep cut's trigger can lie below that.)
+    if (st.decrease <=
+        std::max(precision * options_.tol * Dref, 4.0 * kEps * rounding_scale(D, y))) {
       const double fo = kink >= 0 && held < 0 ? S.f - nr : S.f;
       const Eigen::Vector3d gp = g + H * st.p;
       const double dec = st.p.dot(H * st.p);
@@ -635,7 +639,7 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
       D = Dt;
       held = stick ? ks : -1;
       forced = -1;
-      damped = false;
+      lm = lm > 1e-6 ? 0.1 * lm : 0.0;
       retried = false;
       if constexpr (kLoaded) {
         if (ran_away(y)) {
@@ -661,30 +665,31 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
       }
     }
     if (!accepted) {
-      // The model promised a decrease D does not show. Once per point: if it modelled a foot
-      // exactly, that model again with curvature added (its minimizer can lie far out along a
-      // direction the other feet barely resist); if it took the plain step, the step crossed
-      // the kink of a foot it did not model (another than the slowest, or the slowest whose
-      // exact model was degenerate): the foot whose slip it changes most relative to its size.
-      if (retried) {
-        return false;
-      }
-      retried = true;
+      // The model promised a decrease D does not show. If it modelled a foot exactly, that
+      // model again with more curvature added each time (Levenberg–Marquardt: its minimizer can
+      // lie far out along a direction the other feet barely resist); if it took the plain step,
+      // once per point, the step crossed the kink of a foot it did not model (another than the
+      // slowest, or the slowest whose exact model was degenerate): the foot whose slip it
+      // changes most relative to its size.
       if (kink >= 0) {
-        damped = true;
+        lm = lm > 0.0 ? 10.0 * lm : 1e-2;
+        if (lm > 1e4) {
+          return false;
+        }
         forced = held >= 0 ? -1 : ks;
       } else {
-        const int cross = most_crossed(y, st.p);
+        const int cross = retried ? -1 : most_crossed(y, st.p);
         if (cross < 0) {
           return false;
         }
+        retried = true;
         forced = cross;
       }
       set_state(ks, held == ks ? kStatic : kSlip);
       continue;
     }
     retried = false;
-    damped = false;
+    lm = lm > 1e-6 ? 0.1 * lm : 0.0;
     forced = -1;
     assemble<false>(y, 0.0, S);
     if (!(S.r2_min > 1e-28 * D0_ * D0_)) {
