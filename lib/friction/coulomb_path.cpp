@@ -40,6 +40,7 @@ constexpr double kKappa = 10.0;  // static: ‖r_k‖ ≤ kKappa δ
 template <bool kLoaded>
 void Solver<kLoaded>::path(Eigen::Vector3d y, Sums& S, double Dref) {
   auto& s = frame_.friction;
+  const Eigen::Vector3d start = y;
   const int n = std::max(cs_.active, 1);
   const double delta_min = std::max(0.1 * options_.tol * Dref / n, 64.0 * kEps * Dref / n);
   double delta = std::max(kDelta0 * dissipation(value<true>(y, 0.0), y) / n, delta_min);
@@ -98,7 +99,15 @@ void Solver<kLoaded>::path(Eigen::Vector3d y, Sums& S, double Dref) {
       }
     }
   }
-  // Out of iterations: the last point of the path with its own dual.
+  // Out of iterations: the last point of the path with its own dual (loaded: unless the way the
+  // path went proves sliding).
+  if constexpr (kLoaded) {
+    moved_downhill(start, y);
+    if (sliding_ < 0.0) {
+      report_sliding();
+      return;
+    }
+  }
   classify(kKappa * delta);
   finish(y, Dual{true, delta * delta, Eigen::Vector3d::Zero(), S.g});
 }
@@ -196,6 +205,7 @@ void Solver<kLoaded>::zero_static_duals() {
 template <bool kLoaded>
 bool Solver<kLoaded>::find_anchor(Eigen::Vector3d y) {
   auto& s = frame_.friction;
+  const Eigen::Vector3d start = y;
   const int n = std::max(cs_.active, 1);
   const double delta = std::max(dissipation(value<true>(y, 0.0), y) / n, kEps * D0_);
   if (!(delta > 0.0)) {
@@ -204,7 +214,7 @@ bool Solver<kLoaded>::find_anchor(Eigen::Vector3d y) {
   const double d2 = delta * delta;
   Sums S;
   assemble<true>(y, d2, S);
-  for (int it = 0; it < 40 && s.iterations < options_.max_iterations; ++it) {
+  for (int it = 0; it < 100 && s.iterations < options_.max_iterations; ++it) {
     const Eigen::Vector3d p = smoothing_step(S);
     const double slope = S.g.dot(p);
     // The correction's size² is about the decrement over δ (M₂ ≈ δ H where the feet slide
@@ -216,9 +226,31 @@ bool Solver<kLoaded>::find_anchor(Eigen::Vector3d y) {
     if (ran_away(y)) {
       return false;
     }
+    if ((y - start).norm() > 10.0 * V_) {  // far out: does the way it went prove sliding?
+      moved_downhill(start, y);
+      if (sliding_ < 0.0) {
+        return false;
+      }
+    }
   }
   adopt_interior(y, S, delta);
-  return anchor_.rho < 1.0;
+  if (anchor_.rho < 1.0) {
+    return true;
+  }
+  // No minimizer within reach: past the holding limit Φ_δ runs away along a direction of descent
+  // slowly when the limit is near (too slowly for the runaway test); the way it went proves it.
+  moved_downhill(start, y);
+  return false;
+}
+
+template <bool kLoaded>
+void Solver<kLoaded>::moved_downhill(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  for (const Eigen::Vector3d& e : {Eigen::Vector3d(to - from), to}) {
+    const double n = e.norm();
+    if (n > 0.0 && std::isfinite(n)) {
+      sliding_ = std::min(sliding_, recession(e / n));
+    }
+  }
 }
 
 template <bool kLoaded>

@@ -303,6 +303,9 @@ class Solver {
   /// False when Φ_δ runs away along a direction of unbounded descent (sliding_ set), or no anchor
   /// was found (sliding_ stays 0: the load is at its holding limit to rounding).
   bool find_anchor(Eigen::Vector3d y);
+  /// Loaded: the recession slopes along to − from and along to, the lower into sliding_ if
+  /// negative (a proof of sliding from the way an iteration went).
+  void moved_downhill(const Eigen::Vector3d& from, const Eigen::Vector3d& to);
   /// Loaded, the feet at rest: y = 0 with the anchor's forces (finish()).
   void hold_at_rest();
   /// The anchor's λ⁰_k.

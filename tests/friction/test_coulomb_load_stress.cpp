@@ -498,9 +498,14 @@ TEST(CoulombLoadStress, TheHoldingLimitOfALoadWithAMomentIsOneFlipOfTheVerdict) 
     const double s_support = limit_by_support(c.robot, c.frame, fhat);
     const auto held = [&](double s) {
       solve_coulomb_loaded(c.robot, c.frame, s * fhat);
-      EXPECT_TRUE(is_sliding(c.frame) || c.frame.friction.converged)
-          << "frame " << i << " at s = " << s << ": '" << c.frame.friction.message << "'";
-      return !is_sliding(c.frame);
+      // At the limit to rounding (the scan's point s = s*) neither verdict can be proven in
+      // floating point: there the solver may say so instead ("... holding limit: not certified").
+      const bool at_limit = std::abs(s / s_support - 1.0) <= 1e-12;
+      const bool says_limit = c.frame.friction.message.find("holding limit") != std::string::npos;
+      EXPECT_TRUE(is_sliding(c.frame) || c.frame.friction.converged || (at_limit && says_limit))
+          << "frame " << i << " at s = " << s << " (s/s* - 1 = " << s / s_support - 1.0 << "): '"
+          << c.frame.friction.message << "'";
+      return !is_sliding(c.frame) && c.frame.friction.converged;
     };
     int flips = 0;
     bool last = true;
