@@ -25,46 +25,46 @@ FourBar bigant_linkage() {
 // crank-rocker came from a shape optimization (differential evolution over the link lengths and
 // the coupler point, scale-free, then scaled to the standard leg's 145 mm stroke and rounded to
 // 0.1 mm) that asks, over the standard leg's 0.35-turn stance sweep, for a flat stance moving
-// backward, a transmission angle ≥ 25°, and a return that clears every stair edge of §5.2.2's
-// stairs (tread 0.3 m, riser 0.12 m): the toe's world path, with the body pitched by the stairs'
-// slope and moving on at its stance speed while the toe returns (duty 0.55), stays 1 cm or more
-// above the upper tread wherever it passes an edge, for every position of the lift-off point on
-// its tread (120 positions; touchdown, the last 15 % of the return, excluded). With the crank
+// backward, a transmission angle ≥ 25°, and a return that fits §5.2.2's stairs (tread 0.3 m,
+// riser 0.12 m). Its model of the swing: the toe's world path with the body pitched by the
+// stairs' slope and moving on at its stance speed while the toe returns (duty 0.55), for every
+// position of the lift-off point on its tread (120 positions). Asked: the toe stays 1 cm or more
+// above the upper tread wherever it passes an edge (the last 15 % of the return excluded), and
+// once it meets a tread it moves forward by at most 1 cm more (it comes down steeply, so a toe
+// landing on a tread above the body's stance line does not push the body back). With the crank
 // pivot O₂ at the origin of the leg's xz-plane:
-//   crank a = 93.3 mm, rocker pivot O₄ = (−370.6, 106.8) mm (ground link d = 385.7 mm),
-//   coupler b = 155.5 mm, rocker c = 408.1 mm, toe e = 280.3 mm from the crank pin at 0.243 rad
+//   crank a = 98.3 mm, rocker pivot O₄ = (−505.7, 96.4) mm (ground link d = 514.8 mm),
+//   coupler b = 146.9 mm, rocker c = 522.3 mm, toe e = 266.3 mm from the crank pin at 0.1173 rad
 //   from the coupler, branch σ = −1; θ = θ₀ + 2πφ (the crank turns counter-clockwise; with this
 //   linkage that runs the toe backward below and forward above, as the standard leg's does),
-//   θ₀ = −1.787 rad.
-// Grashof: a + d = 479.0 < b + c = 563.6 and d − a = 292.4 > |b − c| = 252.6 (a crank-rocker).
+//   θ₀ = −1.685 rad.
+// Grashof: a + d = 613.1 < b + c = 669.2 and d − a = 416.5 > |b − c| = 375.4 (a crank-rocker).
 // The path (tests/robots/test_bigant_stairs.cpp): a 145 mm stance stroke, its height varying by
-// 5.2 mm, the stance toe speed varying by 2.3× (standard: 1.65×); the return lifts the toe 181 mm
-// above the stance line (standard: 42 mm), steeply at lift-off; transmission angle ≥ 34°; in the
-// design's model of the swing the toe clears an edge by ≥ 2.7 cm for every lift-off point. In the
-// runs (reports/figures/fig5_3.py) a few toes still cross an edge just below the tread late in
-// the return, near touchdown, which that model left out; and toes that land on a tread above the
-// body's stance line before their stance sweep still push the body back. The coupler curve lies
-// above this linkage's pivots (the mechanism would stand under its toe path): only the toe path
-// enters the model, so the crank pivots are put 0.39 m below the chassis plane, which puts the
-// stance line 0.20 m below it and the whole path below it (a real leg would need another mechanism,
-// e.g. a six-bar, for the same path).
+// 3.6 mm, the stance toe speed varying by 2.4× (standard: 1.65×); the return lifts the toe 195 mm
+// above the stance line (standard: 42 mm), steeply at lift-off and at touchdown; transmission
+// angle ≥ 38°; in the design's model of the swing the toe clears every edge by ≥ 2.4 cm and moves
+// on at most 1.1 cm after meeting a tread. The coupler curve lies above this linkage's pivots (the
+// mechanism would stand under its toe path): only the toe path enters the model, so the crank
+// pivots are put 0.38 m below the chassis plane, which puts the stance line 0.21 m below it and
+// the whole path below it (a real leg would need another mechanism, e.g. a six-bar, for the same
+// path).
 FourBar bigant_stairs_linkage() {
   FourBar f;
-  f.crank = 0.0933;
-  f.coupler = 0.1555;
-  f.rocker = 0.4081;
-  f.rocker_pivot = {-0.3706, 0.1068};
-  f.toe_distance = 0.2803;
-  f.toe_angle = 0.2430;
+  f.crank = 0.0983;
+  f.coupler = 0.1469;
+  f.rocker = 0.5223;
+  f.rocker_pivot = {-0.5057, 0.0964};
+  f.toe_distance = 0.2663;
+  f.toe_angle = 0.1173;
   f.branch = -1;
   return f;
 }
 
 namespace {
 
-constexpr double kStairsCrankPhase = -1.787;  // θ₀, rad
+constexpr double kStairsCrankPhase = -1.685;  // θ₀, rad
 constexpr double kStairsCrankSense = 1.0;     // θ = θ₀ + 2πφ
-constexpr double kStairsPivotZ = -0.39;       // m, the crank pivots below the chassis plane
+constexpr double kStairsPivotZ = -0.38;       // m, the crank pivots below the chassis plane
 
 /// The linkages a BigANT leg may carry, in the order of BigAntLinkage.
 struct LinkageEntry {

@@ -12,10 +12,11 @@ namespace slipwalk::robots {
 /// kStandard is the linkage of robots/bigant.hpp, whose return lifts the toe 42 mm. kStairs is a
 /// leg for §5.2.2's stairs (riser 0.12 m; numbers and design in bigant.cpp, checks in
 /// tests/robots/test_bigant_stairs.cpp): the same 145 mm stance stroke over the same 0.35-turn
-/// sweep and the same stance centres, but a return that lifts the toe 0.18 m above the stance
-/// line and rises steeply at lift-off. The thesis gives no link lengths; its BigANT climbs 0.12 m
-/// risers (Fig. 5.3), which the standard leg cannot in the quasi-static model (no riser walls): its
-/// returning toes pass stair edges below the next tread and stand on it.
+/// sweep and the same stance centres, but a return that lifts the toe 0.195 m above the stance
+/// line, rising steeply after lift-off and coming down steeply to touchdown. The thesis gives no
+/// link lengths; its BigANT climbs 0.12 m risers (Fig. 5.3), which the standard leg cannot in the
+/// quasi-static model (no riser walls): its returning toes pass stair edges below the next tread
+/// and stand on it.
 enum class BigAntLinkage { kStandard, kStairs };
 
 /// BigANT (§3.5.1, §4.1): hexapod, 73 cm chassis, 8.18 kg, legs [HL, ML, FL, HR, MR, FR], each a
