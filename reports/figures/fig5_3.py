@@ -149,6 +149,17 @@ class Run:
             out |= (np.diff(h) > 0) & on[1:] & returning[1:]
         return out
 
+    def returning_load_share(self) -> np.ndarray:
+        """Per frame: the share of the weight carried by toes in their return."""
+        total = np.zeros(self.t.n)
+        returning = np.zeros(self.t.n)
+        for leg in ALL_LEGS:
+            phi = (self.t[f"phase_{leg}"] + 0.5) % 1.0 - 0.5
+            fz = self.t[f"Fz_{leg}"]
+            total += fz
+            returning += np.where(np.abs(phi) > self.sweep / 2 + 1e-9, fz, 0.0)
+        return returning / np.maximum(total, 1e-12)
+
     def returning_contact(self) -> np.ndarray:
         """Per frame: some toe is in contact while its shaft is in the return (outside the
         stance sweep |φ| ≤ sweep/2, φ = 0 mid-stance; robots/bigant.hpp)."""
@@ -239,6 +250,9 @@ def measure(run: Run, stride: float, key: str, values: dict, jump_limit: float,
     if back.any():
         v["backward_frames_returning_toe_frac"] = (v["backward_frames_returning_toe"]
                                                    / v["backward_frames"])
+        # How much of the weight the returning toes carry while the body moves back.
+        v["backward_frames_returning_load_mean"] = float(
+            np.mean(run.returning_load_share()[:-1][back]))
     for name, value in v.items():
         values[f"{key}_{name}"] = value
 
