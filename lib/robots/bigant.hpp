@@ -31,6 +31,7 @@
 
 #include "contact/robot.hpp"
 #include "robots/four_bar.hpp"
+#include "robots/robots.hpp"
 
 namespace slipwalk::robots {
 
@@ -48,21 +49,31 @@ inline constexpr double kBigAntFootLateral = 0.20;    ///< m, |y| of the toes
 [[nodiscard]] FourBar bigant_linkage();
 inline constexpr double kBigAntCrankPhase = -0.979;  ///< θ₀, rad: θ = θ₀ − 2πφ
 
+// BigAntLinkage (robots.hpp): which linkage the legs carry, the one above or the stairs leg.
+
+/// The stairs leg's linkage (m, rad); its crank phase and sense are in bigant.cpp's table.
+[[nodiscard]] FourBar bigant_stairs_linkage();
+
 /// The legs: linkage and where each crank pivot sits in the body frame.
 struct BigAntLegs {
   FourBar linkage;                 ///< shared by all legs
   Eigen::Matrix3Xd pivot;          ///< (3 × N) crank pivot O₂ of each leg, body frame, m
   std::vector<std::string> names;  ///< HL, ML, FL, HR, MR, FR; L1 … Ln, R1 … Rn (hind to front)
+  double crank_phase = kBigAntCrankPhase;  ///< θ₀ of the linkage, rad
+  double crank_sense = -1.0;  ///< θ = θ₀ + crank_sense · 2πφ: −1 turns the crank clockwise in
+                              ///< the body's xz-plane (standard), +1 counter-clockwise (stairs)
 };
 
 /// The most legs a BigANT-like chassis may have (planning's growth study goes to 12).
 inline constexpr int kBigAntMaxLegs = 40;
 
 /// BigANT's six legs, or a BigANT-like robot with an even number `legs` ∈ [2, kBigAntMaxLegs]
-/// of the same legs: legs/2 per side, hind to front, kBigAntLegSpacing apart and centred on the
+/// of the same legs (either linkage, placed so that φ = 0 puts the toes at the same stance
+/// centres): legs/2 per side, hind to front, kBigAntLegSpacing apart and centred on the
 /// body origin, left side first (for 6 legs exactly BigANT's placement and order). Throws
 /// core::InputError("legs", ...) for another count.
-[[nodiscard]] BigAntLegs bigant_legs(int legs = kBigAntLegs);
+[[nodiscard]] BigAntLegs bigant_legs(int legs = kBigAntLegs,
+                                     BigAntLinkage linkage = BigAntLinkage::kStandard);
 
 /// Toe of `leg` at shaft angle φ (turns): position q (m, body frame) and dq/dφ (m per turn),
 /// from the closed-form loop closure and its derivative (robots/four_bar.hpp). No allocation.

@@ -18,8 +18,9 @@ using Shapes = std::array<ClockShape, kBigAntLegs>;
 using Offsets = std::array<double, kBigAntLegs>;  // mid-stance times of the legs, cycles
 
 /// A walker whose leg j sits at cycle phase s_j = f t − offset_j of its clock.
-Walker bigant_walker(std::string name, const Shapes& shapes, const Offsets& offsets, double f) {
-  BigAntLegs legs = bigant_legs();
+Walker bigant_walker(std::string name, const Shapes& shapes, const Offsets& offsets, double f,
+                     BigAntLinkage linkage) {
+  BigAntLegs legs = bigant_legs(kBigAntLegs, linkage);
   Walker w;
   w.name = std::move(name);
   w.robot = bigant_robot();
@@ -64,7 +65,7 @@ Walker bigant_tripod(const TripodGait& gait) {
   }
   // Tripod {HL, FL, MR} at offset 0, {ML, HR, FR} half a cycle later.
   const Offsets offsets = {0.0, 0.5, 0.0, 0.5, 0.0, 0.5};
-  return bigant_walker("bigant_tripod", shapes, offsets, gait.frequency);
+  return bigant_walker("bigant_tripod", shapes, offsets, gait.frequency, gait.linkage);
 }
 
 Walker bigant_metachronal(const MetachronalGait& gait) {
@@ -75,7 +76,7 @@ Walker bigant_metachronal(const MetachronalGait& gait) {
   // [HL, ML, FL, HR, MR, FR]: a hind-to-front wave per side, the right side half a cycle later
   // (the derivation of "four down, two per side" is in robots.hpp).
   const Offsets offsets = {0.0, 1.0 / 3.0, 2.0 / 3.0, 0.5, 5.0 / 6.0, 1.0 / 6.0};
-  return bigant_walker("bigant_metachronal", shapes, offsets, gait.frequency);
+  return bigant_walker("bigant_metachronal", shapes, offsets, gait.frequency, gait.linkage);
 }
 
 }  // namespace slipwalk::robots

@@ -8,6 +8,17 @@
 
 namespace slipwalk::robots {
 
+/// Which linkage the legs carry (a model choice a scene names: [robot] linkage = "stairs").
+/// kStandard is the linkage of robots/bigant.hpp, whose return lifts the toe 42 mm. kStairs is a
+/// leg for §5.2.2's stairs (riser 0.12 m; numbers and design in bigant.cpp, checks in
+/// tests/robots/test_bigant_stairs.cpp): the same 145 mm stance stroke over the same 0.35-turn
+/// sweep and the same stance centres, but a return that lifts the toe 0.195 m above the stance
+/// line, rising steeply after lift-off and coming down steeply to touchdown. The thesis gives no
+/// link lengths; its BigANT climbs 0.12 m risers (Fig. 5.3), which the standard leg cannot in the
+/// quasi-static model (no riser walls): its returning toes pass stair edges below the next tread
+/// and stand on it.
+enum class BigAntLinkage { kStandard, kStairs };
+
 /// BigANT (§3.5.1, §4.1): hexapod, 73 cm chassis, 8.18 kg, legs [HL, ML, FL, HR, MR, FR], each a
 /// 1-DoF four-bar crank driven by a shaft angle φ ∈ [0, 1) (robots/bigant.hpp).
 /// Alternating tripod driven by a Buehler clock (§3.5.1.4, robots/buehler.hpp): slow stance, fast
@@ -24,6 +35,7 @@ struct TripodGait {
                            ///< always down; above 0.5 both are down around the switch)
   double sweep = 0.35;     ///< Σ, shaft turns per stance; valid: (0, 0.6]; 0.35 is the flat
                            ///< bottom of the toe path, more reaches into its round corners
+  BigAntLinkage linkage = BigAntLinkage::kStandard;  ///< the legs (above)
 };
 [[nodiscard]] Walker bigant_tripod(const TripodGait& gait = {});
 
@@ -41,6 +53,7 @@ struct TripodGait {
 struct MetachronalGait {
   double frequency = 0.1;  ///< Hz; valid: > 0
   double sweep = 0.53;     ///< Σ, shaft turns per stance; valid: (0, 0.6]
+  BigAntLinkage linkage = BigAntLinkage::kStandard;  ///< the legs (above)
 };
 [[nodiscard]] Walker bigant_metachronal(const MetachronalGait& gait = {});
 

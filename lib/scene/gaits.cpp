@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -56,6 +57,22 @@ int read_legs(const TableReader& robot, int value, long long lo, long long hi, b
   return value;
 }
 
+/// [robot] linkage of BigANT (robots/robots.hpp: BigAntLinkage), "standard" when absent.
+constexpr std::string_view kLinkageNames[] = {"standard", "stairs"};
+
+void read_linkage(const TableReader& robot, robots::BigAntLinkage& value) {
+  if (const toml::node* n = robot.find("linkage")) {
+    const std::string name =
+        robot.choice(*n, "linkage", {std::begin(kLinkageNames), std::end(kLinkageNames)});
+    value = name == kLinkageNames[1] ? robots::BigAntLinkage::kStairs
+                                     : robots::BigAntLinkage::kStandard;
+  }
+}
+
+std::string_view linkage_name(robots::BigAntLinkage linkage) {
+  return kLinkageNames[static_cast<std::size_t>(linkage)];
+}
+
 /// The table. Its order is the order of scene::Gait and of the names in messages.
 const auto& table() {
   using nlohmann::json;
@@ -68,7 +85,7 @@ const auto& table() {
           .robot = "bigant",
           .robot_owner = {},
           .keys = {"steer", "duty", "sweep"},
-          .robot_keys = {},
+          .robot_keys = {"linkage"},
           .read =
               [](const GaitTables& t) {
                 TripodGait g;
@@ -76,6 +93,7 @@ const auto& table() {
                 t.gait.read_in("steer", ranges::kSteer, g.steer);
                 t.gait.read_in("duty", ranges::kDuty, g.duty);
                 t.gait.read_in("sweep", ranges::kSweep, g.sweep);
+                read_linkage(t.robot, g.linkage);
                 return g;
               },
           .to_json =
@@ -83,6 +101,7 @@ const auto& table() {
                 out["steer"] = g.steer;
                 out["duty"] = g.duty;
                 out["sweep"] = g.sweep;
+                out["linkage"] = std::string(linkage_name(g.linkage));
               },
           .walker = &robots::bigant_tripod,
       },
@@ -92,15 +111,20 @@ const auto& table() {
           .robot = "bigant",
           .robot_owner = {},
           .keys = {"sweep"},
-          .robot_keys = {},
+          .robot_keys = {"linkage"},
           .read =
               [](const GaitTables& t) {
                 MetachronalGait g;
                 read_frequency(t.gait, g.frequency);
                 t.gait.read_in("sweep", ranges::kSweep, g.sweep);
+                read_linkage(t.robot, g.linkage);
                 return g;
               },
-          .to_json = [](const MetachronalGait& g, json& out) { out["sweep"] = g.sweep; },
+          .to_json =
+              [](const MetachronalGait& g, json& out) {
+                out["sweep"] = g.sweep;
+                out["linkage"] = std::string(linkage_name(g.linkage));
+              },
           .walker = &robots::bigant_metachronal,
       },
       // The Multipod's undulation (§3.5.2.1).

@@ -16,6 +16,8 @@
 //   # legs = 6               # multipod: 6, 8, 10, 12; disk: 3 … 1000
 //   # radius = 0.3           # disk only, m
 //   # stiffness = 1000.0     # multipod only, N/m (robots/multipod.hpp)
+//   # linkage = "standard"   # bigant only: "standard" | "stairs", the legs' linkage
+//                            # (robots/robots.hpp: BigAntLinkage)
 //
 //   [gait]                   # required
 //   kind = "tripod"          # bigant: "tripod" | "metachronal"; multipod: "undulation";

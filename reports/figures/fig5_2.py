@@ -18,9 +18,11 @@ viscous ansatz drifts at tan σ / μ (m/s) whatever the gait, so it stalls at ta
 (p₀ the flat progress per cycle, T the period).
 
 What the thesis' figure shows (its caption: "a trajectory of simulated BigAnt robot moving up 17°
-slope") is read as a climb: uphill progress along the plane in every gait cycle, no slide back
-downhill by more than a tenth of the flat stride, and a body height above the plane without
-jumps of more than a centimetre from one frame to the next.
+slope") is read as a climb at the walking stride: every gait cycle gains at least PROGRESS_MIN_REL of
+the flat stride uphill along the plane, no slide back downhill by more than a tenth of the flat
+stride, a body height above the plane without jumps of more than a centimetre from one frame to
+the next, a world height that never falls more than a centimetre below the highest it reached
+(a monotone climb), and a mean pitch that follows the slope within PITCH_TOL_DEG.
 """
 from __future__ import annotations
 
@@ -41,13 +43,16 @@ LEGS = {"FL": "tab:blue", "ML": "tab:orange", "HL": "tab:purple"}
 BODY = "black"
 LAW_COLOR = {"viscous": c.VISCOUS, "coulomb": c.COULOMB}
 LAW_NAME = {"viscous": "viscous-Coulomb", "coulomb": "Coulomb"}
-BACKSLIDE_LIMIT = 0.1  # of the flat progress per cycle
-JUMP_LIMIT = 0.01      # m, of the body's height above the plane, per frame
+BACKSLIDE_LIMIT = 0.1   # of the flat progress per cycle
+JUMP_LIMIT = 0.01       # m, of the body's height above the plane, per frame
+PROGRESS_MIN_REL = 0.8  # of the flat stride, the least uphill progress in any gait cycle
+FALLBACK_LIMIT = 0.01   # m, the most the body's world height may fall below its highest
+PITCH_TOL_DEG = 2.0     # deg, the body's mean pitch against the slope's angle
 
 
 def load_run(data, name):
     path = c.study_file(data, f"{name}.csv", STUDY)
-    cols = ["t", "x", "y", "theta", "z", "bx", "by", "bz"]
+    cols = ["t", "x", "y", "theta", "beta", "z", "bx", "by", "bz"]
     for leg in LEGS:
         cols += [f"px_{leg}", f"pz_{leg}", f"contact_{leg}"]
     t = c.Table(path, cols)
@@ -70,10 +75,21 @@ def climb(t, meta, stride: float) -> dict:
     prog = np.diff(np.interp(np.arange(n + 1) * period, t["t"], s))
     back = float(np.max(np.maximum.accumulate(s) - s))
     jump = float(np.max(np.abs(np.diff(t["z"]))))
-    return {"cycle_progress_min_m": float(np.min(prog)), "max_backslide_m": back,
-            "max_backslide_rel_stride": back / stride, "max_height_jump_m": jump,
-            "climbs_like_thesis": bool(np.min(prog) > 0 and back <= BACKSLIDE_LIMIT * stride
-                                       and jump <= JUMP_LIMIT)}
+    fallback = float(np.max(np.maximum.accumulate(t["bz"]) - t["bz"]))
+    # The body frame is parallel to the plane: its pitch about the horizontal is σ less the
+    # support's δβ (column beta, nose-down positive, eq. 3.6), seen along the uphill direction.
+    sigma = np.radians(float(scene.get("terrain", {}).get("angle_deg", 17.0)))
+    pitch_deg = float(np.degrees(sigma - np.mean(t["beta"])))
+    v = {"cycle_progress_min_m": float(np.min(prog)),
+         "cycle_progress_min_rel_flat": float(np.min(prog) / stride), "max_backslide_m": back,
+         "max_backslide_rel_stride": back / stride, "max_height_jump_m": jump,
+         "max_height_fallback_m": fallback, "mean_pitch_deg": pitch_deg,
+         "mean_pitch_minus_slope_deg": pitch_deg - float(np.degrees(sigma))}
+    v["climbs_like_thesis"] = bool(np.min(prog) >= PROGRESS_MIN_REL * stride
+                                   and back <= BACKSLIDE_LIMIT * stride and jump <= JUMP_LIMIT
+                                   and fallback <= FALLBACK_LIMIT
+                                   and abs(v["mean_pitch_minus_slope_deg"]) <= PITCH_TOL_DEG)
+    return v
 
 
 def side_view(ax, t, meta, title):
@@ -180,6 +196,9 @@ def main():
             values[f"{name}_{key}"] = v
     values["backslide_limit_rel_stride"] = BACKSLIDE_LIMIT
     values["jump_limit_m"] = JUMP_LIMIT
+    values["progress_min_rel_flat"] = PROGRESS_MIN_REL
+    values["fallback_limit_m"] = FALLBACK_LIMIT
+    values["pitch_tol_deg"] = PITCH_TOL_DEG
     values["coulomb_uphill_m"] = float(coul["x"][-1] - coul["x"][0])
     values["viscous_uphill_m"] = float(visc["x"][-1] - visc["x"][0])
     values["coulomb_height_gain_m"] = float(coul["bz"][-1] - coul["bz"][0])

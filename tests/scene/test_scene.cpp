@@ -153,6 +153,32 @@ law = "viscous"
   EXPECT_EQ(std::get<robots::TrotGait>(q.gait).frequency, 2.0);
 }
 
+TEST(Scene, BigAntLinkageIsARobotKeyOfBothBigAntGaits) {
+  // Absent: the standard leg; "stairs" picks the stairs leg (robots.hpp) and reaches the walker;
+  // a misspelling names the choices; another robot does not take the key.
+  const Scene standard = parse_scene(kGood, "s.toml");
+  EXPECT_EQ(std::get<robots::TripodGait>(standard.gait).linkage, robots::BigAntLinkage::kStandard);
+  const std::string stairs_text =
+      replace(kGood, "name = \"bigant\"", "name = \"bigant\"\nlinkage = \"stairs\"");
+  const Scene stairs = parse_scene(stairs_text, "s.toml");
+  EXPECT_EQ(std::get<robots::TripodGait>(stairs.gait).linkage, robots::BigAntLinkage::kStairs);
+  EXPECT_EQ(gait_json(stairs.gait).at("linkage"), "stairs");
+  const Scene meta =
+      parse_scene(replace(replace(stairs_text, "kind = \"tripod\"", "kind = \"metachronal\""),
+                          "steer = -0.5\n", ""),
+                  "s.toml");
+  EXPECT_EQ(std::get<robots::MetachronalGait>(meta.gait).linkage, robots::BigAntLinkage::kStairs);
+  // The two legs walk differently: their toes differ at mid-return.
+  Eigen::Matrix3Xd qa(3, 6);
+  Eigen::Matrix3Xd qb(3, 6);
+  Eigen::Matrix3Xd qd(3, 6);
+  make_walker(standard.gait).feet(2.5, qa, qd);
+  make_walker(stairs.gait).feet(2.5, qb, qd);
+  EXPECT_GT((qa - qb).norm(), 0.05);
+  expect_error(replace(kGood, "name = \"bigant\"", "name = \"bigant\"\nlinkage = \"stair\""),
+               "3:11", "robot.linkage");
+}
+
 TEST(Scene, UnknownKeysSuggestTheNearestName) {
   expect_error(replace(kGood, "frequency = 0.2", "frequncy = 0.2"), "6:1",
                "unknown key 'frequncy' in [gait]; did you mean 'frequency'?");

@@ -259,7 +259,8 @@ TEST(Stairs, ToeExactlyOnAnEdgeAndCrossingItBetweenFrames) {
 }
 
 TEST(Trajectory, SlopeRunIsHeadingInvariantAndStairsZeroRiserIsFlat) {
-  const robots::Walker w = robots::bigant_tripod(robots::TripodGait{0.5, 0.0, 0.55, 0.35});
+  const robots::Walker w = robots::bigant_tripod(
+      robots::TripodGait{.frequency = 0.5, .steer = 0.0, .duty = 0.55, .sweep = 0.35});
   TrajectoryOptions opt;
   opt.dt = 0.02;
   opt.steps = 100;
