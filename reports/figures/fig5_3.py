@@ -36,6 +36,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
 import common as c  # noqa: E402
 import robots as rb  # noqa: E402
+import terrain_peer as tp  # noqa: E402
 
 NAME = "fig5_3"
 STUDY = "ch5_terrain"
@@ -154,10 +155,13 @@ def main():
                         runs[("fine", "coulomb")].riser / runs[("fine", "coulomb")].tread))),
                     "jump_limit_m": jump_limit, "backslide_limit_rel_stride": BACKSLIDE_LIMIT}
     cycles = int(np.floor(stairs.t["t"][-1] / stairs.period + 1e-9))
+    peer = tp.load(args.data)  # MuJoCo's BigANT on the same stairs (referee.toml), if run
     for i, law in enumerate(LAWS):
-        side_view(fig.add_subplot(gs[0, i]), runs[("", law)],
+        ax = fig.add_subplot(gs[0, i])
+        side_view(ax, runs[("", law)],
                   f"({'ab'[i]}) {LAWS[law][0]}: {cycles} cycles at {1 / stairs.period:g} Hz",
                   legend=i == 0)
+        tp.overlay(ax, peer, "bigant_stairs")
 
     # The flat reference: stride per cycle, and how high a returning toe rises above the ground.
     clearance = []
@@ -251,6 +255,7 @@ def main():
     ax_z.set_title("(d) height: jumps when a loaded toe changes tread")
     ax_z.legend(loc="upper left")
 
+    values.update(tp.values(peer, "bigant_stairs", stairs=True))
     fig.suptitle("Fig. 5.3 analog: BigANT's alternating tripod up stairs (synthetic)")
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

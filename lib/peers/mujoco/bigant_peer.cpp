@@ -104,6 +104,19 @@ core::Pose2 bigant_pose(const BigAntData& data) {
 
 double bigant_height(const BigAntData& data) { return data.mj()->qpos[2]; }
 
+Eigen::Vector3d bigant_position(const BigAntData& data) {
+  const mjtNum* p = data.mj()->qpos;
+  return {p[0], p[1], p[2]};
+}
+
+Eigen::Vector2d bigant_tilt(const BigAntData& data) {
+  const mjtNum* q = data.mj()->qpos + 3;  // (w, x, y, z)
+  // The z components of the chassis' x and y axes: R(2, 0) and R(2, 1) of the quaternion.
+  const double x_up = 2.0 * (q[1] * q[3] - q[0] * q[2]);
+  const double y_up = 2.0 * (q[2] * q[3] + q[0] * q[1]);
+  return {std::asin(std::clamp(y_up, -1.0, 1.0)), std::asin(std::clamp(x_up, -1.0, 1.0))};
+}
+
 void bigant_read_legs(const BigAntModel& model, BigAntData& data) {
   const mjModel* m = model.mj();
   const mjData* d = data.mj();

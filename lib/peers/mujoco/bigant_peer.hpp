@@ -79,6 +79,12 @@ void bigant_place(const BigAntModel& model, BigAntData& data, double z, double a
 [[nodiscard]] core::Pose2 bigant_pose(const BigAntData& data);
 /// The chassis origin's height above the foot-centre plane, m.
 [[nodiscard]] double bigant_height(const BigAntData& data);
+/// The chassis origin in MuJoCo's world frame (on a slope: the plane's coordinates), m.
+[[nodiscard]] Eigen::Vector3d bigant_position(const BigAntData& data);
+/// (roll, pitch) of the chassis, rad: pitch nose-up positive, the angle of its x axis above the
+/// world's x-y plane (on a slope: above the plane; eq. 3.6's −β to first order); roll left side
+/// up, the angle of its y axis above that plane (eq. 3.6's α to first order).
+[[nodiscard]] Eigen::Vector2d bigant_tilt(const BigAntData& data);
 
 /// data.slides from qpos; data.Fz, data.contact, data.Fxy from MuJoCo's contacts and data.slip
 /// from its body velocities (need contacts and cvel computed: after mj_forward, or after mj_step

@@ -1,0 +1,129 @@
+"""MuJoCo's BigANT as the referee on §5.2's slope and stairs (Figs. 5.2, 5.3).
+
+Input: DATA/ch5_terrain/referee.csv (kind peer_terrain, studies/ch5_terrain/referee.toml): per
+point one terrain scene walked by our model under both laws (source ours_viscous, ours_coulomb)
+and by MuJoCo (source mujoco), a row per sample: t, x, y (the plane's coordinates on a slope, the
+world's on stairs), bx, by, bz (the body origin in the world), pitch (nose up, rad; relative to
+the slope's plane, world on stairs), contacts; per point a label (base, or the check it runs).
+
+overlay() draws MuJoCo's body path on a side-view panel; values() measures, for every label and
+source, what the thesis' figures show: progress along the uphill (rising) direction per gait
+cycle, height gained per cycle, the largest slide back, the mean pitch against the ground's slope,
+and whether the run climbs: progress and height gain in every whole cycle, a slide back of at most
+BACKSLIDE_LIMIT of the run's own mean progress per cycle. Keys are prefixed `mujoco_`.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+import common as c
+
+STUDY = "ch5_terrain"
+FILE = "referee.csv"
+LABEL = "MuJoCo (dynamic, soft contact)"
+STYLE = {"color": "tab:green", "ls": "--", "lw": 1.6}
+SOURCES = {"mujoco": "peer", "ours_coulomb": "coulomb", "ours_viscous": "viscous"}
+COLUMNS = ["scene", "label", "source", "heading_deg", "ground_slope_deg", "frequency", "t", "x",
+           "y", "bx", "by", "bz", "pitch"]
+BACKSLIDE_LIMIT = 0.1  # of the run's mean progress per cycle
+PITCH_TOL_DEG = 5.0    # stairs: the body's mean pitch within this of the stairs' slope
+AGREE_REL = 0.3        # MuJoCo's mean progress per cycle within this share of ours
+
+
+def load(data: Path) -> c.Table | None:
+    """The referee's table, or None when the study has not written it (the figures then show
+    ours alone and record mujoco_available = false)."""
+    path = Path(data) / STUDY / FILE
+    if not path.is_file():
+        return None
+    t = c.Table(path, COLUMNS)
+    return t if t.n else None
+
+
+def run(table: c.Table, scene: str, label: str = "base", source: str = "mujoco") -> c.Table | None:
+    """The rows of one run, in time order, without the NaN row of a build without MuJoCo."""
+    on = ((table.str("scene") == scene) & (table.str("label") == label)
+          & (table.str("source") == source) & np.isfinite(table["t"]))
+    if np.count_nonzero(on) < 2:
+        return None
+    sub = table.subset(on)
+    order = np.argsort(sub["t"], kind="stable")
+    return sub.subset(order)
+
+
+def overlay(ax, table: c.Table | None, scene: str, legend_loc: str = "upper left") -> bool:
+    """MuJoCo's body path (bx, bz) of the base run on a side-view panel, the panel's legend (if
+    it has one) drawn again to name it; False if there is no such run."""
+    r = run(table, scene) if table is not None else None
+    if r is None:
+        return False
+    ax.plot(r["bx"], r["bz"], label=LABEL, **STYLE)
+    if ax.get_legend() is not None:
+        ax.legend(loc=legend_loc)
+    return True
+
+
+def measure(r: c.Table) -> dict:
+    """What the thesis' figures show, measured on one run (see the module's head)."""
+    psi = np.radians(float(r["heading_deg"][0]))
+    period = 1.0 / float(r["frequency"][0])
+    s = r["x"] * np.cos(psi) + r["y"] * np.sin(psi)
+    t = r["t"]
+    n = int(np.floor((t[-1] - t[0]) / period + 1e-9))
+    out: dict = {"cycles": n}
+    back = float(np.max(np.maximum.accumulate(s) - s))
+    out["max_backslide_m"] = back
+    out["mean_pitch_deg"] = float(np.degrees(np.mean(r["pitch"])))
+    out["ground_slope_deg"] = float(r["ground_slope_deg"][0])
+    out["pitch_minus_ground_deg"] = out["mean_pitch_deg"] - out["ground_slope_deg"]
+    if n < 1:
+        return out
+    ends = t[0] + np.arange(n + 1) * period
+    prog = np.diff(np.interp(ends, t, s))
+    gain = np.diff(np.interp(ends, t, r["bz"]))
+    out["progress_per_cycle_m"] = float(np.mean(prog))
+    out["progress_per_cycle_min_m"] = float(np.min(prog))
+    out["height_gain_per_cycle_m"] = float(np.mean(gain))
+    out["height_gain_per_cycle_min_m"] = float(np.min(gain))
+    out["max_backslide_rel_progress"] = (back / out["progress_per_cycle_m"]
+                                         if out["progress_per_cycle_m"] > 0 else None)
+    out["climbs"] = bool(np.min(prog) > 0 and np.min(gain) > 0
+                         and back <= BACKSLIDE_LIMIT * out["progress_per_cycle_m"])
+    return out
+
+
+def values(table: c.Table | None, scene: str, stairs: bool = False) -> dict:
+    """mujoco_<label>_<peer|coulomb|viscous>_<measure> for every run of the scene, and the
+    comparisons of the base run with ours (Coulomb: the law that climbs in Figs. 5.2-5.3)."""
+    out: dict = {"mujoco_available": False, "mujoco_backslide_limit_rel": BACKSLIDE_LIMIT,
+                 "mujoco_pitch_tol_deg": PITCH_TOL_DEG, "mujoco_agree_rel": AGREE_REL}
+    if table is None:
+        return out
+    on = table.str("scene") == scene
+    for label in sorted(set(table.str("label")[on])):
+        for source, short in SOURCES.items():
+            r = run(table, scene, label, source)
+            if r is None:
+                continue
+            for key, v in measure(r).items():
+                out[f"mujoco_{label}_{short}_{key}"] = v
+    peer = out.get("mujoco_base_peer_progress_per_cycle_m")
+    ours = out.get("mujoco_base_coulomb_progress_per_cycle_m")
+    if peer is None or ours is None:
+        return out
+    out["mujoco_available"] = True
+    out["mujoco_progress_ratio"] = peer / ours if ours else None
+    agree = (out["mujoco_base_peer_climbs"] and abs(peer - ours) <= AGREE_REL * abs(ours))
+    if stairs:
+        dev = out["mujoco_base_peer_pitch_minus_ground_deg"]
+        out["mujoco_pitch_follows_stairs"] = bool(abs(dev) <= PITCH_TOL_DEG)
+        agree = agree and out["mujoco_pitch_follows_stairs"]
+    out["mujoco_agrees_with_ours"] = bool(agree)
+    # Each check against the base: how far it moves MuJoCo's progress per cycle toward ours.
+    for label in ("noslip", "slow", "light", "stiff_xy"):
+        p = out.get(f"mujoco_{label}_peer_progress_per_cycle_m")
+        if p is not None and ours:
+            out[f"mujoco_{label}_progress_ratio"] = p / ours
+    return out
