@@ -256,6 +256,7 @@ def main():
     ax_z.legend(loc="upper left")
 
     values.update(tp.values(peer, "bigant_stairs", stairs=True))
+    values.update(tp.values(peer, "bigant_stairs_fine", stairs=True, prefix="mujoco_fine"))
     fig.suptitle("Fig. 5.3 analog: BigANT's alternating tripod up stairs (synthetic)")
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

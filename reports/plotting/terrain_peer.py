@@ -9,7 +9,8 @@ the slope's plane, world on stairs), contacts; per point a label (base, or the c
 overlay() draws MuJoCo's body path on a side-view panel; values() measures, for every label and
 source, what the thesis' figures show: progress along the uphill (rising) direction per gait
 cycle, height gained per cycle, the largest slide back, the mean pitch against the ground's slope,
-and whether the run climbs: progress and height gain in every whole cycle, a slide back of at most
+the share of MuJoCo's steps with a foot on a tread's edge or a riser (ours has neither), and
+whether the run climbs: progress and height gain in every whole cycle, a slide back of at most
 BACKSLIDE_LIMIT of the run's own mean progress per cycle. Keys are prefixed `mujoco_`.
 """
 from __future__ import annotations
@@ -24,6 +25,10 @@ STUDY = "ch5_terrain"
 FILE = "referee.csv"
 LABEL = "MuJoCo (dynamic, soft contact)"
 STYLE = {"color": "tab:green", "ls": "--", "lw": 1.6}
+# The check whose MuJoCo feet are ours' (no creep in stick, rigid sideways), drawn beside the base.
+STRICT = "noslip_stiff_xy"
+STRICT_LABEL = "MuJoCo, no-slip solver and stiff legs"
+STRICT_STYLE = {"color": "tab:green", "ls": ":", "lw": 1.6}
 SOURCES = {"mujoco": "peer", "ours_coulomb": "coulomb", "ours_viscous": "viscous"}
 COLUMNS = ["scene", "label", "source", "heading_deg", "ground_slope_deg", "frequency", "t", "x",
            "y", "bx", "by", "bz", "pitch"]
@@ -54,12 +59,15 @@ def run(table: c.Table, scene: str, label: str = "base", source: str = "mujoco")
 
 
 def overlay(ax, table: c.Table | None, scene: str, legend_loc: str = "upper left") -> bool:
-    """MuJoCo's body path (bx, bz) of the base run on a side-view panel, the panel's legend (if
-    it has one) drawn again to name it; False if there is no such run."""
+    """MuJoCo's body path (bx, bz) of the base run and of the STRICT check on a side-view panel,
+    the panel's legend (if it has one) drawn again to name them; False if there is no base run."""
     r = run(table, scene) if table is not None else None
     if r is None:
         return False
     ax.plot(r["bx"], r["bz"], label=LABEL, **STYLE)
+    strict = run(table, scene, STRICT)
+    if strict is not None:
+        ax.plot(strict["bx"], strict["bz"], label=STRICT_LABEL, **STRICT_STYLE)
     if ax.get_legend() is not None:
         ax.legend(loc=legend_loc)
     return True
@@ -78,6 +86,8 @@ def measure(r: c.Table) -> dict:
     out["mean_pitch_deg"] = float(np.degrees(np.mean(r["pitch"])))
     out["ground_slope_deg"] = float(r["ground_slope_deg"][0])
     out["pitch_minus_ground_deg"] = out["mean_pitch_deg"] - out["ground_slope_deg"]
+    if "edge_share" in r.columns:  # MuJoCo: steps with a foot on a tread's edge or a riser
+        out["edge_share"] = float(r["edge_share"][0])
     if n < 1:
         return out
     ends = t[0] + np.arange(n + 1) * period
@@ -94,9 +104,30 @@ def measure(r: c.Table) -> dict:
     return out
 
 
-def values(table: c.Table | None, scene: str, stairs: bool = False) -> dict:
-    """mujoco_<label>_<peer|coulomb|viscous>_<measure> for every run of the scene, and the
-    comparisons of the base run with ours (Coulomb: the law that climbs in Figs. 5.2-5.3)."""
+CHECKS = ("noslip", "stiff_xy", "noslip_stiff_xy", "slow", "light")
+
+
+def values(table: c.Table | None, scene: str, stairs: bool = False, prefix: str = "mujoco") -> dict:
+    """<prefix>_<label>_<peer|coulomb|viscous>_<measure> for every run of the scene, and the
+    comparisons of each MuJoCo run with ours (Coulomb: the law that climbs in Figs. 5.2-5.3):
+    <prefix>_agrees_with_ours for the base, <prefix>_<label>_agrees for the checks."""
+    out = {k.replace("mujoco", prefix, 1): v for k, v in _values(table, scene, stairs).items()}
+    return out
+
+
+def _agrees(out: dict, label: str, stairs: bool) -> bool | None:
+    peer = out.get(f"mujoco_{label}_peer_progress_per_cycle_m")
+    ours = out.get(f"mujoco_{label}_coulomb_progress_per_cycle_m",
+                   out.get("mujoco_base_coulomb_progress_per_cycle_m"))
+    if peer is None or ours is None:
+        return None
+    ok = out[f"mujoco_{label}_peer_climbs"] and abs(peer - ours) <= AGREE_REL * abs(ours)
+    if stairs:
+        ok = ok and abs(out[f"mujoco_{label}_peer_pitch_minus_ground_deg"]) <= PITCH_TOL_DEG
+    return bool(ok)
+
+
+def _values(table: c.Table | None, scene: str, stairs: bool) -> dict:
     out: dict = {"mujoco_available": False, "mujoco_backslide_limit_rel": BACKSLIDE_LIMIT,
                  "mujoco_pitch_tol_deg": PITCH_TOL_DEG, "mujoco_agree_rel": AGREE_REL}
     if table is None:
@@ -115,15 +146,16 @@ def values(table: c.Table | None, scene: str, stairs: bool = False) -> dict:
         return out
     out["mujoco_available"] = True
     out["mujoco_progress_ratio"] = peer / ours if ours else None
-    agree = (out["mujoco_base_peer_climbs"] and abs(peer - ours) <= AGREE_REL * abs(ours))
     if stairs:
         dev = out["mujoco_base_peer_pitch_minus_ground_deg"]
         out["mujoco_pitch_follows_stairs"] = bool(abs(dev) <= PITCH_TOL_DEG)
-        agree = agree and out["mujoco_pitch_follows_stairs"]
-    out["mujoco_agrees_with_ours"] = bool(agree)
-    # Each check against the base: how far it moves MuJoCo's progress per cycle toward ours.
-    for label in ("noslip", "slow", "light", "stiff_xy"):
+    out["mujoco_agrees_with_ours"] = _agrees(out, "base", stairs)
+    # Each check: MuJoCo's progress per cycle over ours (the slow run's over ours at its own
+    # frequency), and whether it meets the base's criterion.
+    for label in CHECKS:
         p = out.get(f"mujoco_{label}_peer_progress_per_cycle_m")
-        if p is not None and ours:
-            out[f"mujoco_{label}_progress_ratio"] = p / ours
+        o = out.get(f"mujoco_{label}_coulomb_progress_per_cycle_m", ours)
+        if p is not None and o:
+            out[f"mujoco_{label}_progress_ratio"] = p / o
+            out[f"mujoco_{label}_agrees"] = _agrees(out, label, stairs)
     return out

@@ -7,7 +7,9 @@
 //                 its slides driven along the same gait. One row per sample time and source:
 //                 the pose (x, y, θ: on a slope in the plane's coordinates, on stairs the world's),
 //                 the body origin's world position bx, by, bz (the scene CSVs' columns), the
-//                 body's pitch (nose up) and roll, the feet in contact.
+//                 body's pitch (nose up) and roll, the feet in contact, and MuJoCo's feet's
+//                 contacts on a tread's edge or a riser (which our stairs do not have): at the
+//                 sample, and the share of the run's steps with one.
 //
 // The scene is named relative to the spec file, so the runs follow whatever robot and gait the
 // scene names. The keys that change MuJoCo alone (noslip_iterations, solref_timeconst, kp_xy,
@@ -21,6 +23,7 @@
 // γ plus our δβ), holds the first feet for `settle` s, then walks; its poses are absolute, so a
 // slide during the settling shows.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -96,10 +99,12 @@ Inputs read(const Point& point) {
   if (in.scene.friction.anisotropic) {
     r.fail("scene", "the scene's law is anisotropic; the referee runs the isotropic laws");
   }
+  // The scene's run in gait cycles (at its own frequency) is the default at any frequency.
   double& f = gait_frequency(in.scene.gait);
+  const double scene_cycles = in.scene.duration * f;
   in.frequency = r.number("frequency", f, core::closed(1e-3, 10.0, "Hz"));
   f = in.frequency;
-  in.cycles = r.number("cycles", in.scene.duration * in.frequency, 0.0, 100.0);
+  in.cycles = r.number("cycles", scene_cycles, 0.0, 100.0);
   in.sample = r.number("sample", 0.1, 0.0, 60.0);
   in.settle = r.number("settle", 0.5, 0.0, 60.0, true);
   in.timestep = r.number("timestep", 0.002, core::closed(1e-5, 0.01, "s"));
@@ -153,6 +158,8 @@ struct TerrainPeerRow {
   double pitch = 0.0;
   double roll = 0.0;
   long long contacts = 0;
+  long long edge_contacts = 0;  ///< MuJoCo: feet on a tread's edge or a riser, at the sample
+  double edge_share = 0.0;      ///< MuJoCo: share of the run's steps with such a contact; ours 0
   std::string peer_name = "none";
   std::string message;
 
@@ -182,6 +189,8 @@ struct TerrainPeerRow {
             value("pitch", &R::pitch, "rad"),
             value("roll", &R::roll, "rad"),
             value("contacts", &R::contacts),
+            value("edge_contacts", &R::edge_contacts),
+            value("edge_share", &R::edge_share),
             value("peer", &R::peer_name),
             value("message", &R::message)};
   }
@@ -290,7 +299,8 @@ void run_mujoco(const Point& point, const Inputs& in, Rows<TerrainPeerRow>& out)
   const terrain::Terrain& ground = in.scene.terrain;
   const auto* slope = std::get_if<terrain::Slope>(&ground);
   const std::string name = "mujoco " + peer::version();
-  (void)peer::bigant_drive(
+  const std::size_t first_row = out.rows.size();
+  const peer::BigAntDriveSummary summary = peer::bigant_drive(
       model, data, w.feet, z, alpha, beta, options, [&](const peer::BigAntSample& s) {
         TerrainPeerRow r = base_row(point, in, "mujoco");
         r.kp_z = spec.kp_z;
@@ -308,9 +318,15 @@ void run_mujoco(const Point& point, const Inputs& in, Rows<TerrainPeerRow>& out)
         r.roll = tilt(0);
         r.pitch = tilt(1);
         r.contacts = s.contacts;
+        r.edge_contacts = peer::bigant_edge_contacts(model, data);
         r.peer_name = name;
         out.rows.push_back(std::move(r));
       });
+  const double share = static_cast<double>(summary.edge_steps) /
+                       static_cast<double>(std::max(1LL, summary.tracking.steps));
+  for (std::size_t i = first_row; i < out.rows.size(); ++i) {
+    out.rows[i].edge_share = share;
+  }
 }
 #endif
 
@@ -336,6 +352,8 @@ Rows<TerrainPeerRow> run(const Point& point) {
   const double nan = std::nan("");
   r.t = r.x = r.y = r.theta = r.bx = r.by = r.bz = r.pitch = r.roll = nan;
   r.contacts = -1;
+  r.edge_contacts = -1;
+  r.edge_share = nan;
   r.message = message;
   out.rows.push_back(std::move(r));
 #endif

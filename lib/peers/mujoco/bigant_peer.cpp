@@ -165,6 +165,19 @@ void bigant_read_legs(const BigAntModel& model, BigAntData& data) {
   }
 }
 
+int bigant_edge_contacts(const BigAntModel& model, const BigAntData& data) {
+  const double cos_limit = std::cos(10.0 * std::numbers::pi / 180.0);
+  const mjData* d = data.mj();
+  int edges = 0;
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& con = d->contact[i];
+    const bool foot = model.leg_of_geom[static_cast<std::size_t>(con.geom1)] >= 0 ||
+                      model.leg_of_geom[static_cast<std::size_t>(con.geom2)] >= 0;
+    edges += foot && std::abs(con.frame[2]) < cos_limit ? 1 : 0;
+  }
+  return edges;
+}
+
 // --- tracking
 // ---------------------------------------------------------------------------------------
 
@@ -263,6 +276,7 @@ BigAntDriveSummary bigant_drive(const BigAntModel& model, BigAntData& data,
     }
     contacts_sum += down;
     out.max_Fz_error = std::max(out.max_Fz_error, std::abs(data.Fz.sum() - Mg) / Mg);
+    out.edge_steps += bigant_edge_contacts(model, data) > 0 ? 1 : 0;
     ++tr.steps;
   }
   out.mean_contacts = contacts_sum / static_cast<double>(std::max<long long>(tr.steps, 1));
