@@ -114,7 +114,7 @@ Inputs read(const Point& point) {
   in.solref_timeconst = r.number("solref_timeconst", 0.005, 0.0, 10.0);
   in.iterations = static_cast<int>(r.integer("iterations", 100, 1, 100000));
   in.noslip_iterations = static_cast<int>(r.integer("noslip_iterations", 0, 0, 100000));
-  in.inertia_scale = r.number("inertia_scale", 1.0, 0.0, 1e3);
+  in.inertia_scale = r.number("inertia_scale", 1.0, core::closed(1e-3, 1e3, ""));
   in.ours = r.choice("ours", {"both", "none"}) == "both";
   in.label = r.text("label").value_or("base");
   if (in.solref_timeconst < 2.0 * in.timestep) {
@@ -123,6 +123,9 @@ Inputs read(const Point& point) {
   const double duration = in.cycles / in.frequency;
   in.scene.steps = std::llround(duration / in.scene.dt);
   in.scene.duration = static_cast<double>(in.scene.steps) * in.scene.dt;
+  if (in.scene.steps < 1) {
+    r.fail("cycles", "the run must be at least one of the scene's dt steps long");
+  }
   if (in.sample < in.scene.dt || in.sample < in.timestep) {
     r.fail("sample", "must be at least the scene's dt and timestep");
   }
