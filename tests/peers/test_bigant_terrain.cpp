@@ -4,7 +4,8 @@
 // terrain::step_height over exactly their treads, bad terrain is refused by name, and the kind's
 // keys and refusals. With MuJoCo: a robot standing on the slope with the no-slip solver holds and
 // its feet carry Mg cos σ; on the stairs the feet settle on their treads' heights and the body's
-// pitch is our spring support's; the kind gives rows of every source, ours on the scene's treads.
+// pitch is our spring support's; the kind gives rows of every source, ours on the scene's treads;
+// MuJoCo's feet meet tread edges and risers on the stairs and never on the slope's plane.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -183,6 +184,23 @@ TEST(PeerTerrainKind, OursStartsOnTheScenesTreadsPitchedByTheStairsSlope) {
   }
   EXPECT_GE(ours, 2);
   EXPECT_GE(mujoco, 1);
+}
+
+TEST(PeerTerrainKind, MujocosFeetMeetEdgesOnTheStairsAndNeverOnTheSlope) {
+  SKIP_WITHOUT_MUJOCO();
+  const sweeps::PointKind& kind = test_support::point_kind("peer_terrain");
+  const auto share = [&](const char* scene) {
+    const auto points = test_support::points_of(
+        "peer_terrain", std::string("[params]\nscene = \"") + scene_path(scene) +
+                            "\"\ncycles = 1.0\nours = \"none\"\nsample = 1.0\n"
+                            "noslip_iterations = 20\nkp_xy = 10000.0\n");
+    const sweeps::PointResult r = kind.run(points.at(0));
+    EXPECT_FALSE(r.failed) << r.message;
+    return std::get<double>(r.rows.at(0).at(test_support::column(kind, "edge_share")));
+  };
+  // A returning toe meets a 12 cm riser (the toes lift a few cm); a plane has no edge.
+  EXPECT_GT(share("bigant_stairs.toml"), 0.05);
+  EXPECT_EQ(share("bigant_slope17.toml"), 0.0);
 }
 
 // ---- with MuJoCo -------------------------------------------------------------------------------
