@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstddef>
 #include <filesystem>
 #include <numbers>
 #include <regex>
@@ -281,7 +282,8 @@ TEST(BigAntTerrainPeer, OnTheStairsTheFeetSettleOnTheirTreadsAndTheBodyPitchesAs
     }
     ++down;
     // A foot centre at rest on a tread lies at the tread's height (less the contact's sinkage).
-    const mjtNum* c = data.mj()->geom_xpos + 3 * model.foot_geom[static_cast<std::size_t>(k)];
+    const std::ptrdiff_t geom = model.foot_geom[static_cast<std::size_t>(k)];
+    const mjtNum* c = data.mj()->geom_xpos + 3 * geom;
     EXPECT_NEAR(c[2], terrain::step_height(stairs, c[0], c[1]), 3e-3) << "leg " << k;
   }
   EXPECT_GE(down, 3);
