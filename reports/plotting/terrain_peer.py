@@ -105,14 +105,34 @@ def measure(r: c.Table) -> dict:
 
 
 CHECKS = ("noslip", "stiff_xy", "noslip_stiff_xy", "slow", "light")
+# The runs referee.toml makes per scene (label: sources), and what measure() returns for each:
+# every one of these keys is written, None with a <key>_reason where it could not be measured.
+RUNS = {"base": ("peer", "coulomb", "viscous"), "slow": ("peer", "coulomb", "viscous"),
+        **{label: ("peer",) for label in CHECKS if label != "slow"}}
+MEASURES = ("cycles", "max_backslide_m", "mean_pitch_deg", "ground_slope_deg",
+            "pitch_minus_ground_deg", "edge_share", "progress_per_cycle_m",
+            "progress_per_cycle_min_m", "height_gain_per_cycle_m", "height_gain_per_cycle_min_m",
+            "max_backslide_rel_progress", "climbs")
+NO_RUN = ("no referee run with a whole gait cycle (studies/ch5_terrain/referee.toml): not run, a "
+          "quick run, or a build without MuJoCo")
 
 
 def values(table: c.Table | None, scene: str, stairs: bool = False, prefix: str = "mujoco") -> dict:
     """<prefix>_<label>_<peer|coulomb|viscous>_<measure> for every run of the scene, and the
     comparisons of each MuJoCo run with ours (Coulomb: the law that climbs in Figs. 5.2-5.3):
-    <prefix>_agrees_with_ours for the base, <prefix>_<label>_agrees for the checks."""
-    out = {k.replace("mujoco", prefix, 1): v for k, v in _values(table, scene, stairs).items()}
-    return out
+    <prefix>_agrees_with_ours for the base, <prefix>_<label>_agrees for the checks. Every key is
+    written; one that could not be measured is None and has a <key>_reason (the ledger's rule)."""
+    out = _values(table, scene, stairs)
+    expected = [f"mujoco_{label}_{short}_{m}" for label, shorts in RUNS.items()
+                for short in shorts for m in MEASURES]
+    expected += ["mujoco_progress_ratio", "mujoco_agrees_with_ours"]
+    expected += ["mujoco_pitch_follows_stairs"] if stairs else []
+    expected += [f"mujoco_{label}_{k}" for label in CHECKS for k in ("progress_ratio", "agrees")]
+    for key in expected:
+        if out.get(key) is None:
+            out[key] = None
+            out[key + "_reason"] = NO_RUN
+    return {k.replace("mujoco", prefix, 1): v for k, v in out.items()}
 
 
 def _agrees(out: dict, label: str, stairs: bool) -> bool | None:

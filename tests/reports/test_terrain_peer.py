@@ -97,7 +97,14 @@ class TerrainPeerValues(unittest.TestCase):
         self.assertAlmostEqual(v["mujoco_base_peer_progress_per_cycle_min_m"], -0.1, places=9)
         with tempfile.TemporaryDirectory() as d:
             self.assertIsNone(tp.load(Path(d)))
-            self.assertEqual(tp.values(None, "bigant_stairs")["mujoco_available"], False)
+            v = tp.values(None, "bigant_stairs", stairs=True, prefix="mujoco_fine")
+        # No data: every key the ledger may name is there, None, with the reason.
+        self.assertEqual(v["mujoco_fine_available"], False)
+        for key in ("mujoco_fine_agrees_with_ours", "mujoco_fine_pitch_follows_stairs",
+                    "mujoco_fine_noslip_stiff_xy_peer_edge_share",
+                    "mujoco_fine_slow_coulomb_progress_per_cycle_m"):
+            self.assertIsNone(v[key])
+            self.assertIn("referee.toml", v[key + "_reason"])
 
 
 if __name__ == "__main__":
