@@ -64,10 +64,24 @@ def overlay(ax, table: c.Table | None, scene: str, legend_loc: str = "upper left
     r = run(table, scene) if table is not None else None
     if r is None:
         return False
-    ax.plot(r["bx"], r["bz"], label=LABEL, **STYLE)
-    strict = run(table, scene, STRICT)
-    if strict is not None:
-        ax.plot(strict["bx"], strict["bz"], label=STRICT_LABEL, **STRICT_STYLE)
+    # Keep the panel's frame (ours and the ground): a path that leaves it is cut at the frame's
+    # edge and its end is written in the corner.
+    ax.apply_aspect()
+    xlim, ylim = ax.get_xlim(), ax.get_ylim()
+    ends = []
+    for path, label, style in ((r, LABEL, STYLE), (run(table, scene, STRICT), STRICT_LABEL,
+                                                    STRICT_STYLE)):
+        if path is None:
+            continue
+        ax.plot(path["bx"], path["bz"], label=label, **style)
+        x, z = float(path["bx"][-1]), float(path["bz"][-1])
+        if not (xlim[0] <= x <= xlim[1] and ylim[0] <= z <= ylim[1]):
+            ends.append(f"{label}: ends at ({x:.2f}, {z:.2f}) m, outside the frame")
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
+    if ends:
+        ax.text(0.98, 0.02, "\n".join(ends), transform=ax.transAxes, ha="right", va="bottom",
+                fontsize=8, color=STYLE["color"])
     if ax.get_legend() is not None:
         ax.legend(loc=legend_loc)
     return True
