@@ -36,6 +36,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
 import common as c  # noqa: E402
 import robots as rb  # noqa: E402
+import terrain_peer as tp  # noqa: E402
 
 NAME = "fig5_2"
 STUDY = "ch5_terrain"
@@ -132,10 +133,14 @@ def main():
     fig = plt.figure(figsize=(13, 9))
     gs = fig.add_gridspec(2, 2, height_ratios=[1.1, 1], hspace=0.3, wspace=0.2,
                           left=0.06, right=0.98, top=0.92, bottom=0.07)
-    side_view(fig.add_subplot(gs[0, 0]), coul, coul_meta,
+    peer = tp.load(args.data)  # MuJoCo's BigANT on the same slope (referee.toml), if run
+    ax_a, ax_b = fig.add_subplot(gs[0, 0]), fig.add_subplot(gs[0, 1])
+    side_view(ax_a, coul, coul_meta,
               f"(a) Coulomb friction: up {sigma_deg:g}°, {cycles} cycles at {1 / period:g} Hz")
-    side_view(fig.add_subplot(gs[0, 1]), visc, visc_meta,
+    tp.overlay(ax_a, peer, "bigant_slope17")
+    side_view(ax_b, visc, visc_meta,
               "(b) viscous-Coulomb ansatz: slides downhill at tan σ/μ m/s")
+    tp.overlay(ax_b, peer, "bigant_slope17")
 
     ax = fig.add_subplot(gs[1, :])
     law = prog.str("law")
@@ -210,6 +215,7 @@ def main():
     summary_c = coul_meta.get("summary", {})
     values["coulomb_not_converged_frames"] = int(summary_c.get("not_converged_frames", 0))
     values["coulomb_max_balance_residual"] = float(summary_c.get("max_friction_residual", 0.0))
+    values.update(tp.values(peer, "bigant_slope17"))
     fig.suptitle("Fig. 5.2 analog: BigANT's alternating tripod on a slope (synthetic; μ = 1)")
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

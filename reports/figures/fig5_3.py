@@ -48,6 +48,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
 import common as c  # noqa: E402
 import robots as rb  # noqa: E402
+import terrain_peer as tp  # noqa: E402
 
 NAME = "fig5_3"
 STUDY = "ch5_terrain"
@@ -280,10 +281,13 @@ def main():
                     "progress_min_rel_flat": PROGRESS_MIN_REL, "gain_tol_rel": GAIN_TOL_REL,
                     "pitch_tol_deg": PITCH_TOL_DEG, "linkage": stairs.linkage}
     cycles = int(np.floor(stairs.t["t"][-1] / stairs.period + 1e-9))
+    peer = tp.load(args.data)  # MuJoCo's BigANT on the same stairs (referee.toml), if run
     for i, law in enumerate(LAWS):
-        side_view(fig.add_subplot(gs[0, i]), runs[("", law)],
+        ax = fig.add_subplot(gs[0, i])
+        side_view(ax, runs[("", law)],
                   f"({'ab'[i]}) {LAWS[law][0]}, {stairs.linkage} leg: {cycles} cycles at "
                   f"{1 / stairs.period:g} Hz", legend=i == 0)
+        tp.overlay(ax, peer, "bigant_stairs")
 
     # The flat references: stride per cycle, and how high a returning toe rises above the ground.
     for flat_kind in ("flat", "flat_standard"):
@@ -352,6 +356,8 @@ def main():
     ax_z.set_title("(d) height: jumps when a loaded toe changes tread")
     ax_z.legend(loc="upper left", fontsize="small")
 
+    values.update(tp.values(peer, "bigant_stairs", stairs=True))
+    values.update(tp.values(peer, "bigant_stairs_fine", stairs=True, prefix="mujoco_fine"))
     fig.suptitle("Fig. 5.3 analog: BigANT's alternating tripod up stairs (synthetic)")
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)

@@ -27,6 +27,8 @@ namespace slipwalk::sweeps::points {
 [[nodiscard]] std::vector<PointKind> peer_kinds();
 /// The sim-to-sim comparison of §3.5.4, Fig. 3.14: BigANT in MuJoCo (peer_bigant.cpp).
 [[nodiscard]] std::vector<PointKind> peer_bigant_kinds();
+/// The referee on §5.2's slope and stairs, Figs. 5.2-5.3: MuJoCo's BigANT (peer_terrain.cpp).
+[[nodiscard]] std::vector<PointKind> peer_terrain_kinds();
 /// A motion plan of §5.5 replayed on MuJoCo's BigANT (plan_replay.cpp).
 [[nodiscard]] std::vector<PointKind> plan_replay_kinds();
 /// What each scene effect costs per step (scene_cost.cpp).

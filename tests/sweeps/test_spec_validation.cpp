@@ -43,6 +43,9 @@ const std::map<std::string, std::string>& bases() {
       {"peer_scaling", "N = 3\nconfigs = 2\nbatches = 1\nmin_batch_us = 1\n"},
       {"parallel_overhead", "trajectories = 2\nsteps = 5\nmax_threads = 1\nblocks = 1\n"},
       {"peer_bigant", "duration = 0.2\nsample = 0.1\nsettle = 0.0\ndt = 0.01\ntimestep = 0.002\n"},
+      {"peer_terrain", "scene = \"" SLIPWALK_SOURCE_DIR
+                       "/studies/ch5_terrain/scenes/bigant_stairs.toml\"\ncycles = 0.02\n"
+                       "settle = 0.0\n"},
       {"plan_replay", "steps = 2\nsettle = 0.0\n"},
       {"scene_cost", "steps = 5\nrepeats = 1\n"},
       {"slope_progress", "cycles = 2\nsteps_per_cycle = 10\nangle_deg = 5.0\n"},

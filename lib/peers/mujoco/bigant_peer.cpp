@@ -104,6 +104,19 @@ core::Pose2 bigant_pose(const BigAntData& data) {
 
 double bigant_height(const BigAntData& data) { return data.mj()->qpos[2]; }
 
+Eigen::Vector3d bigant_position(const BigAntData& data) {
+  const mjtNum* p = data.mj()->qpos;
+  return {p[0], p[1], p[2]};
+}
+
+Eigen::Vector2d bigant_tilt(const BigAntData& data) {
+  const mjtNum* q = data.mj()->qpos + 3;  // (w, x, y, z)
+  // The z components of the chassis' x and y axes: R(2, 0) and R(2, 1) of the quaternion.
+  const double x_up = 2.0 * (q[1] * q[3] - q[0] * q[2]);
+  const double y_up = 2.0 * (q[2] * q[3] + q[0] * q[1]);
+  return {std::asin(std::clamp(y_up, -1.0, 1.0)), std::asin(std::clamp(x_up, -1.0, 1.0))};
+}
+
 void bigant_read_legs(const BigAntModel& model, BigAntData& data) {
   const mjModel* m = model.mj();
   const mjData* d = data.mj();
@@ -150,6 +163,19 @@ void bigant_read_legs(const BigAntModel& model, BigAntData& data) {
     mj_objectVelocity(m, d, mjOBJ_GEOM, model.foot_geom[static_cast<std::size_t>(k)], v, 0);
     data.slip.col(k) << c * v[3] + s * v[4], -s * v[3] + c * v[4];
   }
+}
+
+int bigant_edge_contacts(const BigAntModel& model, const BigAntData& data) {
+  const double cos_limit = std::cos(10.0 * std::numbers::pi / 180.0);
+  const mjData* d = data.mj();
+  int edges = 0;
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& con = d->contact[i];
+    const bool foot = model.leg_of_geom[static_cast<std::size_t>(con.geom1)] >= 0 ||
+                      model.leg_of_geom[static_cast<std::size_t>(con.geom2)] >= 0;
+    edges += foot && std::abs(con.frame[2]) < cos_limit ? 1 : 0;
+  }
+  return edges;
 }
 
 // --- tracking
@@ -250,6 +276,7 @@ BigAntDriveSummary bigant_drive(const BigAntModel& model, BigAntData& data,
     }
     contacts_sum += down;
     out.max_Fz_error = std::max(out.max_Fz_error, std::abs(data.Fz.sum() - Mg) / Mg);
+    out.edge_steps += bigant_edge_contacts(model, data) > 0 ? 1 : 0;
     ++tr.steps;
   }
   out.mean_contacts = contacts_sum / static_cast<double>(std::max<long long>(tr.steps, 1));

@@ -79,6 +79,18 @@ void bigant_place(const BigAntModel& model, BigAntData& data, double z, double a
 [[nodiscard]] core::Pose2 bigant_pose(const BigAntData& data);
 /// The chassis origin's height above the foot-centre plane, m.
 [[nodiscard]] double bigant_height(const BigAntData& data);
+/// The chassis origin in MuJoCo's world frame (on a slope: the plane's coordinates), m.
+[[nodiscard]] Eigen::Vector3d bigant_position(const BigAntData& data);
+/// (roll, pitch) of the chassis, rad: pitch nose-up positive, the angle of its x axis above the
+/// world's x-y plane (on a slope: above the plane; eq. 3.6's −β to first order); roll left side
+/// up, the angle of its y axis above that plane (eq. 3.6's α to first order).
+[[nodiscard]] Eigen::Vector2d bigant_tilt(const BigAntData& data);
+
+/// Feet's contacts whose normal leans more than 10° from the world's z axis (|n_z| < cos 10°): on
+/// stairs a foot on a tread's edge or against a riser (bigant_spec.hpp), which our model's stairs
+/// do not have (a toe is on a tread or above it); none on flat ground or the slope's plane. Needs
+/// contacts computed (after mj_forward or mj_step).
+[[nodiscard]] int bigant_edge_contacts(const BigAntModel& model, const BigAntData& data);
 
 /// data.slides from qpos; data.Fz, data.contact, data.Fxy from MuJoCo's contacts and data.slip
 /// from its body velocities (need contacts and cvel computed: after mj_forward, or after mj_step
@@ -122,6 +134,7 @@ struct BigAntDriveSummary {
   core::Pose2 end;             ///< the last sample's relative pose
   double mean_contacts = 0.0;  ///< feet in contact, mean over steps
   double max_Fz_error = 0.0;   ///< max over steps of |ΣF_z − Mg| / Mg
+  long long edge_steps = 0;    ///< steps with a foot on an edge or a riser (bigant_edge_contacts)
 };
 
 using BigAntSink = std::function<void(const BigAntSample&)>;

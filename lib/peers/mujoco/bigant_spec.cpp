@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <variant>
 
 #include "core/error.hpp"
 
@@ -45,6 +46,42 @@ void check_spec(const BigAntPeerSpec& s) {
       !std::isfinite(s.damping)) {
     bad("iterations must be >= 1, noslip_iterations >= 0 and damping >= 0");
   }
+  terrain::validate(s.terrain);  // InputError "terrain.angle", "terrain.tread", ...
+  if (const auto* st = std::get_if<terrain::Stairs>(&s.terrain)) {
+    if (!s.stairs_extent.allFinite() || !(s.stairs_extent(0) < s.stairs_extent(1)) ||
+        !((s.stairs_extent(1) - s.stairs_extent(0)) / st->tread < kMaxStairBoxes - 2)) {
+      throw core::InputError("bigant peer spec: stairs_extent",
+                             "must be finite, first < second, and span at most " +
+                                 std::to_string(kMaxStairBoxes - 2) + " treads");
+    }
+    if (!(s.stairs_half_width > 0.0) || !std::isfinite(s.stairs_half_width) ||
+        !(s.stairs_depth > 0.0) || !std::isfinite(s.stairs_depth)) {
+      throw core::InputError("bigant peer spec: stairs_half_width, stairs_depth",
+                             "must be positive and finite");
+    }
+  }
+}
+
+/// The ground: a plane one foot radius below z = 0 (flat, and a slope whose tilt is in gravity),
+/// or stairs: a box per tread, top at i·riser − r, all down to one base (bigant_spec.hpp).
+void write_ground(std::ostringstream& x, const BigAntPeerSpec& s) {
+  const auto* st = std::get_if<terrain::Stairs>(&s.terrain);
+  if (st == nullptr) {
+    x << "    <geom name=\"floor\" type=\"plane\" size=\"0 0 1\" pos=\"0 0 " << -s.foot_radius
+      << "\" conaffinity=\"1\" friction=\"0 0 0\"/>\n";
+    return;
+  }
+  const Eigen::Vector2i treads = bigant_treads(s, *st);
+  const double base = treads(0) * st->riser - s.foot_radius - s.stairs_depth;
+  const double c = std::cos(st->heading), sn = std::sin(st->heading);
+  for (int i = treads(0); i <= treads(1); ++i) {
+    const double top = i * st->riser - s.foot_radius;
+    const double along = (i + 0.5) * st->tread;
+    x << "    <geom name=\"tread" << i << "\" type=\"box\" size=\"" << 0.5 * st->tread << ' '
+      << s.stairs_half_width << ' ' << 0.5 * (top - base) << "\" pos=\"" << along * c << ' '
+      << along * sn << ' ' << 0.5 * (top + base) << "\" euler=\"0 0 " << st->heading
+      << "\" conaffinity=\"1\" friction=\"0 0 0\"/>\n";
+  }
 }
 
 }  // namespace
@@ -77,6 +114,21 @@ BigAntPeerSpec bigant_peer_spec(const robots::Walker& walker, int samples) {
   return spec;
 }
 
+Eigen::Vector3d bigant_gravity(const BigAntPeerSpec& spec) {
+  if (const auto* slope = std::get_if<terrain::Slope>(&spec.terrain)) {
+    // eq. 5.1 in the plane's frame: the normal part g cos σ, the rest g sin σ down −ψ.
+    const double along = spec.gravity * std::sin(slope->angle);
+    return {-along * std::cos(slope->heading), -along * std::sin(slope->heading),
+            -spec.gravity * std::cos(slope->angle)};
+  }
+  return {0.0, 0.0, -spec.gravity};
+}
+
+Eigen::Vector2i bigant_treads(const BigAntPeerSpec& spec, const terrain::Stairs& s) {
+  return {static_cast<int>(std::floor(spec.stairs_extent(0) / s.tread)),
+          static_cast<int>(std::ceil(spec.stairs_extent(1) / s.tread)) - 1};
+}
+
 std::string bigant_mjcf(const BigAntPeerSpec& s) {
   check_spec(s);
   std::ostringstream x;
@@ -84,9 +136,11 @@ std::string bigant_mjcf(const BigAntPeerSpec& s) {
   const double chassis_mass = s.total_mass - 3.0 * s.link_mass * s.legs();
   // Link inertia: tiny but positive (MuJoCo rejects massless moving bodies); slides do not rotate.
   const double link_inertia = s.link_mass * 1e-4;
+  const Eigen::Vector3d g = bigant_gravity(s);
   x << "<mujoco model=\"slipwalk_bigant\">\n"
     << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
-    << "  <option timestep=\"" << s.timestep << "\" gravity=\"0 0 " << -s.gravity
+    << "  <option timestep=\"" << s.timestep << "\" gravity=\"" << g(0) << ' ' << g(1) << ' '
+    << g(2) << "\" noslip_iterations=\"" << s.noslip_iterations
     << "\" solver=\"Newton\" iterations=\"" << s.iterations << "\" tolerance=\"" << s.tolerance
     << "\" cone=\"" << (s.elliptic ? "elliptic" : "pyramidal")
     << "\"/>\n"
@@ -94,12 +148,11 @@ std::string bigant_mjcf(const BigAntPeerSpec& s) {
     // the contact's (the mix of the two geoms') is it.
     << "  <default><geom contype=\"0\" conaffinity=\"0\" condim=\"3\" solref=\""
     << s.solref_timeconst << ' ' << s.solref_dampratio << "\"/></default>\n"
-    << "  <worldbody>\n"
-    // The contact's friction is the larger of the two geoms': a frictionless floor leaves the
-    // foot's μ.
-    << "    <geom name=\"floor\" type=\"plane\" size=\"0 0 1\" pos=\"0 0 " << -s.foot_radius
-    << "\" conaffinity=\"1\" friction=\"0 0 0\"/>\n"
-    << "    <body name=\"chassis\" pos=\"0 0 0.2\">\n"
+    << "  <worldbody>\n";
+  // The contact's friction is the larger of the two geoms': a frictionless ground leaves the
+  // foot's μ.
+  write_ground(x, s);
+  x << "    <body name=\"chassis\" pos=\"0 0 0.2\">\n"
     << "      <freejoint name=\"root\"/>\n"
     << "      <inertial pos=\"0 0 0\" mass=\"" << chassis_mass << "\" diaginertia=\""
     << s.chassis_inertia(0) << ' ' << s.chassis_inertia(1) << ' ' << s.chassis_inertia(2)

@@ -14,11 +14,20 @@
 // eq. 3.6: F_z = −K h). MuJoCo's z slide with target q_z is the same spring with K = kp_z (the
 // contact itself is far stiffer), so the like-for-like comparison runs our model with K = kp_z
 // (the peer_bigant sweep point does so by default).
+//
+// Terrain (thesis §5.2), one place for both: a slope keeps the floor plane and tilts gravity by σ
+// toward −ψ (downhill), so MuJoCo's world frame is the plane's and the pose is in the plane's
+// coordinates exactly as ours (terrain.hpp); tilting the plane instead would put the pose in the
+// world and need the change of coordinates at every sample. Stairs replace the plane by one box
+// per tread: tread i covers s ∈ [i·tread, (i+1)·tread) along ψ, its top at i·riser less the foot
+// radius (a foot centre at the tread's height touches, as on the flat floor), every box down to
+// one common base below the lowest tread. Unlike ours, MuJoCo's risers are walls.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "robots/walker.hpp"
+#include "terrain/terrain.hpp"
 
 namespace slipwalk::peers::mujoco {
 
@@ -46,9 +55,18 @@ struct BigAntPeerSpec {
   bool elliptic = false;           ///< friction cone: elliptic, or pyramidal (MuJoCo's default)
   int noslip_iterations = 0;  ///< MuJoCo's no-slip post-solver iterations (0: off, the default;
                               ///< > 0 removes the soft contacts' creep in stick)
+  terrain::Terrain terrain;   ///< flat (default), slope (gravity tilted) or stairs (tread boxes)
+  /// m, stairs only: the range of s = p·(cos ψ, sin ψ) the treads cover (whole treads around it);
+  /// valid: finite, first < second, at most kMaxStairBoxes treads
+  Eigen::Vector2d stairs_extent = Eigen::Vector2d(-1.5, 3.0);
+  double stairs_half_width = 2.0;  ///< m, stairs only: each tread's half width across ψ; > 0
+  double stairs_depth = 0.5;       ///< m, stairs only: the boxes' base below the lowest tread; > 0
 
   [[nodiscard]] int legs() const { return static_cast<int>(nominal.cols()); }
 };
+
+/// The most tread boxes a stairs spec may ask for.
+inline constexpr int kMaxStairBoxes = 1000;
 
 /// The spec for a BigANT walker: leg names and μ from walker.robot, nominal points the mean of
 /// walker.feet over one period (`samples` evenly spaced times), mass Mg / g. Throws
@@ -57,6 +75,15 @@ struct BigAntPeerSpec {
 
 /// The MJCF text. Throws core::InputError("bigant peer spec", ...) for invalid fields.
 [[nodiscard]] std::string bigant_mjcf(const BigAntPeerSpec& spec);
+
+/// Gravity in MuJoCo's world frame (m/s²): (0, 0, −g) on flat ground and stairs; on a slope, in
+/// the plane's coordinates, −g (sin σ cos ψ, sin σ sin ψ, cos σ) (eq. 5.1: Mg cos σ along the
+/// normal, Mg sin σ downhill).
+[[nodiscard]] Eigen::Vector3d bigant_gravity(const BigAntPeerSpec& spec);
+
+/// The index range [first, last] of the treads of a stairs spec (i with [i·tread, (i+1)·tread)
+/// meeting stairs_extent).
+[[nodiscard]] Eigen::Vector2i bigant_treads(const BigAntPeerSpec& spec, const terrain::Stairs& s);
 
 /// The actuator targets (slide coordinates, 3 x N) for feet q: q − nominal, plus a lead
 /// (damping / kp) q̇ per axis when `lead` is set. The lead cancels the joint damping's steady lag
