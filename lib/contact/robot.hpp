@@ -107,7 +107,8 @@ struct FrictionSummary {
     kDirect,    ///< no Newton step: no friction, nothing moves, or the viscous start certified
     kFastPath,  ///< Newton with the kink model (the fast path)
     kPath,      ///< the smoothing path, the fast path not tried (a foot at rest at the start,
-                ///< fast_path = false, or a load)
+                ///< fast_path = false, or a load near its holding limit with no balanced
+                ///< dual inside the disks yet)
     kFallback,  ///< the smoothing path after the fast path stalled (a restart from the start)
   };
   bool converged = true;  ///< false when the solve failed, also whenever v_body, the forces or
