@@ -358,6 +358,8 @@ def main():
 
     values.update(tp.values(peer, "bigant_stairs", stairs=True))
     values.update(tp.values(peer, "bigant_stairs_fine", stairs=True, prefix="mujoco_fine"))
+    values.update(tp.values(peer, "bigant_stairs_standard", stairs=True,
+                            prefix="mujoco_standard"))
     fig.suptitle("Fig. 5.3 analog: BigANT's alternating tripod up stairs (synthetic)")
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, values)
