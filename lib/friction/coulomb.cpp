@@ -870,19 +870,7 @@ void Solver<kLoaded>::finish(Eigen::Vector3d y, const Dual& dual) {
       }
     }
   }
-  bool feasible = true;
-  if (lmax2 > 1.0) {
-    if constexpr (kLoaded) {
-      feasible = mix(std::sqrt(lmax2), sum, value);
-    } else {
-      const double shrink = 1.0 / std::sqrt(lmax2);
-      frame_.Fxy *= shrink;
-      frame_.work_2n *= shrink;
-      sum.force *= shrink;
-      sum.moment *= shrink;
-      value *= shrink;
-    }
-  }
+  bool feasible = !(lmax2 > 1.0) || into_disks(std::sqrt(lmax2), sum, value);
   // Φ at y and at the Newton point (D itself when unloaded).
   double phi = primal;
   double phi_stepped = stepped;
@@ -987,19 +975,8 @@ template <bool kLoaded>
     frame_.Fxy.col(k) = -(Bk.leftCols<2>() * lam);  // F_k = −c_k W_k λ_k
     sum.add(frame_, k, frame_.Fxy.col(k));
   }
-  if (lmax2 > 1.0) {
-    if constexpr (kLoaded) {  // mixed with the anchor, which keeps the load's balance
-      if (!mix(std::sqrt(lmax2), sum, value)) {
-        return -kInf;
-      }
-    } else {  // a common scale keeps the balance
-      const double shrink = 1.0 / std::sqrt(lmax2);
-      frame_.Fxy *= shrink;
-      frame_.work_2n *= shrink;
-      sum.force *= shrink;
-      sum.moment *= shrink;
-      value *= shrink;
-    }
+  if (lmax2 > 1.0 && !into_disks(std::sqrt(lmax2), sum, value)) {
+    return -kInf;
   }
   if constexpr (kLoaded) {
     sum.force += load_raw_.head<2>();
@@ -1009,7 +986,17 @@ template <bool kLoaded>
 }
 
 template <bool kLoaded>
-bool Solver<kLoaded>::mix(double m, detail::BalanceSum& sum, double& value) {
+bool Solver<kLoaded>::into_disks(double m, detail::BalanceSum& sum, double& value) {
+  if constexpr (!kLoaded) {  // a common scale keeps the balance
+    const double shrink = 1.0 / m;
+    frame_.Fxy *= shrink;
+    frame_.work_2n *= shrink;
+    sum.force *= shrink;
+    sum.moment *= shrink;
+    value *= shrink;
+    return true;
+  }
+  // Loaded: mixed with the anchor, which keeps the load's balance.
   if (!(anchor_.rho < 1.0)) {
     return false;
   }

@@ -293,10 +293,11 @@ class Solver {
   bool ran_away(const Eigen::Vector3d& y);
   /// No quasi-static balance: v_body = 0, no forces, the recession slope as the certificate.
   void report_sliding();
-  /// Mixes the balanced candidate in work_2n (largest norm m > 1) with the anchor so that every
-  /// λ_k lies in its disk: rewrites work_2n, Fxy, `sum` (without the load) and `value`; false
-  /// when there is no anchor inside the disks.
-  bool mix(double m, detail::BalanceSum& sum, double& value);
+  /// Brings the balanced candidate in work_2n (largest norm m > 1) into the disks: scaled by 1/m
+  /// (unloaded), or mixed with the anchor (loaded, which scaling would unbalance); rewrites
+  /// work_2n, Fxy, `sum` (without the load) and `value`. False when loaded and there is no
+  /// anchor inside the disks.
+  bool into_disks(double m, detail::BalanceSum& sum, double& value);
   /// Loaded, the c-weighted anchor not inside the disks (near the holding limit): Newton's method
   /// on the smoothing Φ_δ at a fixed δ (D(start)/N, the start's mean slip) to its minimizer, whose
   /// corrected dual r_k/ρ_k is strictly inside the disks and becomes the anchor (coulomb_path.cpp).
