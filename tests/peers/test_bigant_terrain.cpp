@@ -157,10 +157,13 @@ TEST(PeerTerrainKind, RefusesAMissingSceneBadValuesAndUnknownKeys) {
 }
 
 TEST(PeerTerrainKind, OursStartsOnTheScenesTreadsPitchedByTheStairsSlope) {
+  // The standard leg: MuJoCo's robot with the stairs leg (toes 0.5 m below the chassis on soft
+  // sideways actuators) tips back within the settling time (the referee study's finding), so the
+  // placement is checked where the robot stands.
   const sweeps::PointKind& kind = test_support::point_kind("peer_terrain");
   const auto points = test_support::points_of(
       "peer_terrain",
-      "[params]\nscene = \"" + scene_path("bigant_stairs.toml") + "\"\ncycles = 0.05\n");
+      "[params]\nscene = \"" + scene_path("bigant_stairs_standard.toml") + "\"\ncycles = 0.05\n");
   ASSERT_EQ(points.size(), 1u);
   const sweeps::PointResult r = kind.run(points[0]);
   ASSERT_FALSE(r.failed) << r.message;
