@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "robots/bigant.hpp"
 #include "robots/robots.hpp"
+#include "support/bigant_toe.hpp"
 
 namespace slipwalk::robots {
 namespace {
@@ -23,16 +24,7 @@ namespace {
 constexpr double kSweep = kBigAntStanceSweep;  // the tripod's default sweep
 const double kMetaSweep = MetachronalGait{}.sweep;
 
-/// Toe of leg 0 at φ relative to its crank pivot (all legs share the linkage).
-Eigen::Vector3d toe(const BigAntLegs& legs, double phi, Eigen::Vector3d* d = nullptr) {
-  Eigen::Vector3d q;
-  Eigen::Vector3d dq;
-  bigant_toe(legs, 0, phi, q, dq);
-  if (d != nullptr) {
-    *d = dq;
-  }
-  return q - legs.pivot.col(0);
-}
+using test_support::toe;
 
 TEST(BigAntLeg, ToePathHasAFlatStanceAndARaisedReturn) {
   const BigAntLegs legs = bigant_legs();

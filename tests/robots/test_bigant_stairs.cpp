@@ -16,6 +16,7 @@
 #include "connection/trajectory_kernel.hpp"
 #include "robots/bigant.hpp"
 #include "robots/robots.hpp"
+#include "support/bigant_toe.hpp"
 #include "terrain/terrain.hpp"
 
 namespace slipwalk::robots {
@@ -23,16 +24,7 @@ namespace {
 
 constexpr double kSweep = kBigAntStanceSweep;
 
-/// Toe of leg 0 at φ relative to its crank pivot.
-Eigen::Vector3d toe(const BigAntLegs& legs, double phi, Eigen::Vector3d* d = nullptr) {
-  Eigen::Vector3d q;
-  Eigen::Vector3d dq;
-  bigant_toe(legs, 0, phi, q, dq);
-  if (d != nullptr) {
-    *d = dq;
-  }
-  return q - legs.pivot.col(0);
-}
+using test_support::toe;
 
 struct StancePath {
   double stroke;     ///< m, backward over the sweep
