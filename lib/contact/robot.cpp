@@ -1,9 +1,14 @@
 #include "contact/robot.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/lanes.hpp"
 
 namespace slipwalk::contact {
 
@@ -72,7 +77,10 @@ Frame::Frame(const Robot& robot)
       work_2n(Eigen::Matrix2Xd::Zero(2, robot.legs())),
       work_idx(static_cast<std::size_t>(robot.legs()), 0),
       support_newton(robot.legs()),
+      viscous(robot.legs()),
       coulomb(robot.legs()) {}
+
+ViscousScratch::ViscousScratch(int legs) : rows(FootRows<kRows>::Zero(kRows, padded_feet(legs))) {}
 
 SupportNewtonScratch::SupportNewtonScratch(int legs)
     : qy(FootRow::Zero(padded_feet(legs))),
@@ -82,13 +90,47 @@ SupportNewtonScratch::SupportNewtonScratch(int legs)
       on(FootRow::Zero(padded_feet(legs))) {}
 
 CoulombScratch::CoulombScratch(int legs)
-    : B(FootRows<6>::Zero(6, padded_feet(legs))),
-      d(FootRows<2>::Zero(2, padded_feet(legs))),
-      active(FootRow::Zero(padded_feet(legs))),
-      sliding(FootRow::Zero(padded_feet(legs))),
-      r2(FootRow::Zero(padded_feet(legs))),
-      weight(FootRow::Zero(padded_feet(legs))),
-      inv_weight2(FootRow::Zero(padded_feet(legs))) {}
+    : B(FootRows<6>::Zero(6, padded_pairs(legs))),
+      d(FootRows<2>::Zero(2, padded_pairs(legs))),
+      active(FootRow::Zero(padded_pairs(legs))),
+      sliding(FootRow::Zero(padded_pairs(legs))),
+      r2(FootRow::Zero(padded_pairs(legs))),
+      weight(FootRow::Zero(padded_pairs(legs))),
+      inv_weight2(FootRow::Zero(padded_pairs(legs))) {}
+
+namespace detail {
+
+// Whether |x_i| ≤ bound for all n values of x, NaN failing: the largest |x_i| (lane-wise maxima,
+// which keep a NaN of x out: a < b is false) and the sum of x_i · 0, which is NaN exactly when
+// some x_i is NaN or infinite. Branch-free, four lanes at a time (a short-circuiting test per
+// value was the model's largest per-leg cost after the support search itself).
+SLIPWALK_CLONES bool within(const double* x, Eigen::Index n, double bound) {
+  using L = core::Lanes<4>;
+  using V = L::V;
+  const V sign_off = std::bit_cast<V>(L::M{} + std::numeric_limits<std::int64_t>::max());
+  V largest{};
+  V probe{};
+  Eigen::Index i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const V v = L::load(x + i);
+    const V a = std::bit_cast<V>(std::bit_cast<L::M>(v) & std::bit_cast<L::M>(sign_off));
+    largest = largest < a ? a : largest;
+    probe += v * 0.0;
+  }
+  double m = 0.0;
+  double p = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    m = std::max(m, largest[k]);
+    p += probe[k];
+  }
+  for (; i < n; ++i) {
+    m = std::max(m, std::abs(x[i]));
+    p += x[i] * 0.0;
+  }
+  return m <= bound && p == 0.0;
+}
+
+}  // namespace detail
 
 namespace {
 
@@ -111,10 +153,10 @@ void check_frame(const Robot& robot, const Frame& frame) {
     throw core::InputError("q", "has " + std::to_string(frame.q.cols()) + " feet, the robot " +
                                     std::to_string(n) + " legs");
   }
-  // One vectorized test per matrix (the ranges are symmetric; NaN fails every comparison), and
-  // a loop only to name the culprit.
-  const bool inside = (frame.q.array().abs() <= limits::kPosition.hi).all() &&
-                      (frame.qdot.array().abs() <= limits::kVelocity.hi).all() &&
+  // One pass per matrix, four values at a time (the ranges are symmetric), and a loop only to
+  // name the culprit.
+  const bool inside = detail::within(frame.q.data(), frame.q.size(), limits::kPosition.hi) &&
+                      detail::within(frame.qdot.data(), frame.qdot.size(), limits::kVelocity.hi) &&
                       limits::kYaw.contains(frame.theta);
   if (!inside) [[unlikely]] {
     name_out_of_range(frame);

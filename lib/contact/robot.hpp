@@ -128,14 +128,18 @@ struct FrictionSummary {
   std::string message;       ///< empty unless something noteworthy happened
 };
 
-/// Per-foot quantities as rows: one column per foot, padded with a zero column to an even count N̄
-/// of feet, so that a pass over the feet handles two feet per SIMD register (a struct of arrays).
+/// Per-foot quantities as rows: one column per foot, padded with zero columns to a count N̄ of
+/// feet that is a multiple of four, so that a pass over the feet handles four feet per step (one
+/// AVX register, two SSE2 registers; core/lanes.hpp) with no remainder (a struct of arrays).
 using FootRow = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor>;
 template <int kRows>
 using FootRows = Eigen::Matrix<double, kRows, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// N rounded up to even: the column count of FootRow and FootRows.
-[[nodiscard]] constexpr int padded_feet(int legs) { return (legs + 1) / 2 * 2; }
+/// N rounded up to a multiple of four: the column count of FootRow and FootRows.
+[[nodiscard]] constexpr int padded_feet(int legs) { return (legs + 3) / 4 * 4; }
+/// N rounded up to even: the column count of the Coulomb solver's rows (CoulombScratch), whose
+/// passes take two feet per step (Eigen::Array2d) and pad with at most one foot.
+[[nodiscard]] constexpr int padded_pairs(int legs) { return (legs + 1) / 2 * 2; }
 
 /// Scratch of the spring-support Newton route (contact/support_newton.cpp, §3.3): the feet's
 /// coordinates in the plane of (α, β, z) and their contact flags, each (1 x N̄). The padding
@@ -148,10 +152,10 @@ struct SupportNewtonScratch {
   FootRow K;         ///< K_j, N/m
   FootRow on;        ///< 1.0 where foot j was in contact (h_j < 0) at the last pass, else 0.0
 
-  /// Whether every row has the same even count of columns, at least `legs`.
+  /// Whether every row has the same count of columns, a multiple of four, at least `legs`.
   [[nodiscard]] bool holds(int legs) const {
     const Eigen::Index n = qy.cols();
-    return n >= legs && n % 2 == 0 && minus_qx.cols() == n && qz.cols() == n && K.cols() == n &&
+    return n >= legs && n % 4 == 0 && minus_qx.cols() == n && qz.cols() == n && K.cols() == n &&
            on.cols() == n;
   }
 };
@@ -159,7 +163,8 @@ struct SupportNewtonScratch {
 /// Scratch of the Coulomb solver (friction::solve_coulomb, friction/coulomb_solver.hpp): the
 /// per-foot constants of the dissipation D(y) = Σ_k ‖B_k y + d_k‖ in the scaled coordinates
 /// y = (v_x, v_y, L ω) of friction/balance.hpp, and the solver's per-foot state. Each member is
-/// (rows x N̄); a foot without friction and the padding foot have zero columns.
+/// (rows x N̄), N̄ = padded_pairs(N); a foot without friction and the padding foot have zero
+/// columns.
 struct CoulombScratch {
   explicit CoulombScratch(int legs);
   FootRows<6> B;        ///< B_k = c_k W_k J̃_k (2 x 3), N, column-major down the rows:
@@ -174,7 +179,29 @@ struct CoulombScratch {
   FootRow inv_weight2;  ///< 1 / c_k², N⁻²
 
   /// Whether the members have the column count of a frame with `legs` feet.
-  [[nodiscard]] bool fits(int legs) const { return B.cols() == padded_feet(legs); }
+  [[nodiscard]] bool fits(int legs) const { return B.cols() == padded_pairs(legs); }
+};
+
+/// Scratch of the viscous balance (friction/viscous_system.hpp, thesis eq. 3.20): the feet's
+/// planar inputs and weights as rows, written by the assembly pass so that the passes after it
+/// (the forces, the columns of A) read them four feet at a time. Each row (1 x N̄); the padding
+/// foot has a zero column (c = 0: it adds exact zeros to every sum).
+struct ViscousScratch {
+  explicit ViscousScratch(int legs);
+  enum Row : int {
+    kQx = 0,  ///< q_x,k, m
+    kQy,      ///< q_y,k, m
+    kQdx,     ///< q̇_x,k, m/s
+    kQdy,     ///< q̇_y,k, m/s
+    kC,       ///< c_k = μ_k F_z,k, N (0 for a foot in the air or without friction)
+    kFx,      ///< F_x,k, N: the viscous-Coulomb force, before it is written to Frame::Fxy
+    kFy,      ///< F_y,k, N
+    kRows
+  };
+  FootRows<kRows> rows;
+
+  /// Whether the rows have the column count of a frame with `legs` feet.
+  [[nodiscard]] bool fits(int legs) const { return rows.cols() == padded_feet(legs); }
 };
 
 /// One evaluation of the model: inputs, outputs ("computed by ..."), scratch.
@@ -205,6 +232,7 @@ struct Frame {
   Eigen::Matrix2Xd work_2n;   ///< (2 x N) friction/: the Coulomb duals λ_k, or ‖W_k u_k‖
   std::vector<int> work_idx;  ///< (N) friction/: the Coulomb feet's states, static marks
   SupportNewtonScratch support_newton;  ///< contact::spring_support's Newton route
+  ViscousScratch viscous;               ///< friction::ViscousSystem (isotropic robots)
   CoulombScratch coulomb;               ///< friction::solve_coulomb
 
   [[nodiscard]] int legs() const { return static_cast<int>(q.cols()); }

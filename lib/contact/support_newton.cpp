@@ -35,6 +35,7 @@
 #include "contact/support_newton.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -43,9 +44,7 @@
 #include <cstring>
 #include <limits>
 
-// The 32-byte vectors below never cross a call (internal, inlined helpers), so GCC's note that
-// passing them without AVX would change the ABI does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include "core/lanes.hpp"
 
 namespace slipwalk::contact::detail {
 
@@ -64,57 +63,16 @@ constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accepted only
 constexpr double kNearPlane = 1e3;
 // The padding foot (odd N) sits this far above the ground: never in contact, K = 0.
 constexpr double kAboveGround = 1e300;
+// A moment the contacts cannot take below kFlatTilt × Mg is zero (spring_support.cpp's kFlatTol).
+constexpr double kFlatTilt = 1e-12;
 
 // The rows of frame.support_newton in the order the passes index them: the feet's a_j, q_z,j and
 // K_j, and the contact flags (1.0 / 0.0) of the last pass.
 enum Row : int { kY = 0, kMinusX, kQz, kK, kOn, kRows };
 
-// Function multiversioning (GCC on x86-64): an AVX2 clone of support_by_newton beside the portable
-// default, chosen at load time; other compilers and targets get the default only. Not x86-64-v3:
-// its FMA would contract a·b + c and round differently from the default clone.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define SLIPWALK_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define SLIPWALK_CLONES
-#endif
-
-// W feet per step in GCC/Clang vector extensions rather than Eigen arrays, because the per-foot
-// contact test is a lane mask (Eigen 3.4 does not vectorize select()). W = 4 is one AVX register
-// in the AVX2 clone and two SSE2 registers in the default one; the code and hence the
-// rounding are the same in both.
-template <int W>
-struct VectorTypes;
-template <>
-struct VectorTypes<2> {
-  using V = double __attribute__((vector_size(16)));
-  using M = std::int64_t __attribute__((vector_size(16)));
-};
-template <>
-struct VectorTypes<4> {
-  using V = double __attribute__((vector_size(32)));
-  using M = std::int64_t __attribute__((vector_size(32)));
-};
-
-template <int W>
-struct Lanes {
-  using V = typename VectorTypes<W>::V;
-  using M = typename VectorTypes<W>::M;
-  static V load(const double* p) {
-    V v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  }
-  static void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
-  static V splat(double x) { return V{} + x; }
-  static V select(M mask, V x) { return std::bit_cast<V>(std::bit_cast<M>(x) & mask); }
-  static double sum(V v) {
-    double s = 0.0;
-    for (int i = 0; i < W; ++i) {
-      s += v[i];
-    }
-    return s;
-  }
-};
+// One pass handles four feet at a time in core::Lanes (an AVX2 clone of support_by_newton where
+// the CPU has it, else pairs of SSE2 registers: the same rounding).
+using core::Lanes;
 
 struct Rows {
   const double* in[kOn];
@@ -139,18 +97,17 @@ struct Cell {
 };
 
 // The sums of one pass, per lane.
-template <int W>
 struct Sums {
-  using V = typename Lanes<W>::V;
+  using V = Lanes<4>::V;
   V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes{}, near{};
 };
 
-// Feet j … j + W − 1 of a pass at v (see pass()).
-template <bool kAll, int W>
+// Feet j … j + 3 of a pass at v (see pass()).
+template <bool kAll>
 [[gnu::always_inline]] inline void add_feet(const Rows& R, Eigen::Index j, const Eigen::Vector3d& v,
-                                            double threshold, double margin, Sums<W>& s) {
-  using L = Lanes<W>;
-  using V = typename L::V;
+                                            double threshold, double margin, Sums& s) {
+  using L = Lanes<4>;
+  using V = L::V;
   const V y = L::load(R.in[kY] + j);
   const V x = L::load(R.in[kMinusX] + j);
   const V K = L::load(R.in[kK] + j);
@@ -161,7 +118,7 @@ template <bool kAll, int W>
     w = K;
     on = L::select(K > L::splat(0.0), L::splat(1.0));
   } else {
-    const typename L::M touching = h < L::splat(threshold);
+    const L::M touching = h < L::splat(threshold);
     w = L::select(touching, K);
     on = L::select(touching, L::splat(1.0));
     const V d = on - L::load(R.on + j);
@@ -184,43 +141,34 @@ template <bool kAll, int W>
   s.gz += wh;
 }
 
-// One pass over the feet at v, four at a time (and the last two: the rows' length is even).
-// kAll: every foot counts (the start); else the feet with h_j < −noise (Rows::noise), whose flags
-// are stored in row kOn and compared with the previous ones.
-template <bool kAll>
-[[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg) {
-  const double threshold = -R.noise(v);
+// One pass over the feet at v, four at a time. kAll: every foot counts (the start); else the feet
+// with h_j < threshold (by default −noise, Rows::noise: the outputs' contact convention), whose
+// flags are stored in row kOn and compared with the previous ones.
+template <bool kAll = false>
+[[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg,
+                                        double threshold) {
   const double margin = kNearPlane * R.noise(v);
-  Sums<4> s4;
-  Sums<2> s2;
-  Eigen::Index j = 0;
-  for (; j + 4 <= R.cols; j += 4) {
-    add_feet<kAll>(R, j, v, threshold, margin, s4);
+  Sums s;
+  for (Eigen::Index j = 0; j < R.cols; j += 4) {  // the rows' length is a multiple of four
+    add_feet<kAll>(R, j, v, threshold, margin, s);
   }
-  if (j < R.cols) {
-    add_feet<kAll>(R, j, v, threshold, margin, s2);
-  }
-  const auto sum = [&s4, &s2](auto Sums<4>::*m4, auto Sums<2>::*m2) {
-    return Lanes<4>::sum(s4.*m4) + Lanes<2>::sum(s2.*m2);
-  };
-  const double sy = sum(&Sums<4>::y, &Sums<2>::y);
-  const double sx = sum(&Sums<4>::x, &Sums<2>::x);
-  const double syx = sum(&Sums<4>::yx, &Sums<2>::yx);
+  const auto sum = [&s](auto Sums::*m) { return Lanes<4>::sum(s.*m); };
+  const double sy = sum(&Sums::y);
+  const double sx = sum(&Sums::x);
+  const double syx = sum(&Sums::yx);
   Cell c;
-  c.H << sum(&Sums<4>::yy, &Sums<2>::yy), syx, sy,  //
-      syx, sum(&Sums<4>::xx, &Sums<2>::xx), sx,     //
-      sy, sx, sum(&Sums<4>::k, &Sums<2>::k);
-  c.g << sum(&Sums<4>::gy, &Sums<2>::gy), sum(&Sums<4>::gx, &Sums<2>::gx),
-      sum(&Sums<4>::gz, &Sums<2>::gz) + Mg;
-  c.changes = sum(&Sums<4>::changes, &Sums<2>::changes);
-  c.near = sum(&Sums<4>::near, &Sums<2>::near);
+  c.H << sum(&Sums::yy), syx, sy,  //
+      syx, sum(&Sums::xx), sx,     //
+      sy, sx, sum(&Sums::k);
+  c.g << sum(&Sums::gy), sum(&Sums::gx), sum(&Sums::gz) + Mg;
+  c.changes = sum(&Sums::changes);
+  c.near = sum(&Sums::near);
   return c;
 }
 
-// dv = −H⁻¹ g, solved in the scaled state ũ = D v, D = diag(L, L, 1) (H̃ = D⁻¹ H D⁻¹,
+// dv = −H⁻¹ g, solved in the scaled state ũ = D v, D = diag(L, L, 1) (il = 1/L) (H̃ = D⁻¹ H D⁻¹,
 // g̃ = D⁻¹ g) by the adjugate; false when H̃ is not safely definite (see the top).
-bool newton_step(const Cell& c, double L, Eigen::Vector3d& dv) {
-  const double il = 1.0 / L;
+bool newton_step(const Cell& c, double il, Eigen::Vector3d& dv) {
   const double h00 = c.H(0, 0) * il * il;
   const double h10 = c.H(1, 0) * il * il;
   const double h11 = c.H(1, 1) * il * il;
@@ -251,10 +199,73 @@ bool newton_step(const Cell& c, double L, Eigen::Vector3d& dv) {
   return true;
 }
 
-// SupportSummary::residual from the gradient: max(|Mg − ΣF_z|/Mg, |M_x|/(Mg L), |M_y|/(Mg L)).
-double residual(const Cell& c, double Mg, double L) {
-  return std::max(
-      {std::abs(c.g(2)) / Mg, std::abs(c.g(0)) / (Mg * L), std::abs(c.g(1)) / (Mg * L)});
+// SupportSummary::residual from the gradient: max(|Mg − ΣF_z|/Mg, |M_x|/(Mg L), |M_y|/(Mg L)),
+// with inv_mg = 1/Mg and il = 1/L (multiplications: it sits on the serial path of every step).
+double residual(const Cell& c, double inv_mg, double il) {
+  return std::max({std::abs(c.g(2)), std::abs(c.g(0)) * il, std::abs(c.g(1)) * il}) * inv_mg;
+}
+
+// A step from a cell that is not safely definite: fewer than three contacts off a line at v
+// (the previous step overshot). Its quadratic has no minimizer; Alg. 1 would tilt here (eqs.
+// 3.11, 3.12: d = −g_N, the moment the contacts cannot take, spring_support.cpp), keeping every
+// contact's compression, until the first foot in the air touches down. So does this step: the
+// tilt to that touch-down, then the Newton step of the cell with that foot added (the body turns
+// onto the next foot and settles on the new cell's balance), repeated while the cell is still
+// not definite (one contact: two tilts). It changes only where the route goes, never what it
+// certifies (the checks at the end are those of every step). Returns false where Alg. 1 ends:
+// nothing stops the tilt (the robot tips), or the CoM is over the contacts' line or point (no
+// tilt: a line or point support), or kMaxTilts tilts did not give a definite cell.
+constexpr int kMaxTilts = 3;
+bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double L, double il,
+               Cell& cell, Eigen::Vector3d& dv) {
+  const Eigen::Vector3d scale(L, L, 1.0);  // scaled state ũ = D v (spring_support.cpp)
+  Eigen::Vector3d at = v;
+  for (int tilt = 0; tilt < kMaxTilts; ++tilt) {
+    // The null space of the scaled Hessian and the gradient's part in it.
+    const Eigen::Matrix3d H =
+        scale.cwiseInverse().asDiagonal() * cell.H * scale.cwiseInverse().asDiagonal();
+    const Eigen::Vector3d g = cell.g.cwiseQuotient(scale);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+    es.computeDirect(H);
+    const double floor = kDefiniteTol * std::max(H.trace(), 0.0);
+    Eigen::Vector3d g_null = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 3; ++i) {
+      if (es.eigenvalues()(i) <= floor) {
+        g_null += es.eigenvectors().col(i) * es.eigenvectors().col(i).dot(g);
+      }
+    }
+    if (!(g_null.norm() > kFlatTilt * Mg)) {
+      return false;  // nothing to tilt: a line or point support under the CoM
+    }
+    const Eigen::Vector3d d = (-g_null).cwiseQuotient(scale);
+    // The first foot in the air to touch down along at + t d (contacts keep their heights).
+    double t = kInf;
+    int first = -1;
+    for (int j = 0; j < n; ++j) {
+      if (R.on[j] != 0.0) {
+        continue;
+      }
+      const double r = R.in[kY][j] * d(0) + R.in[kMinusX][j] * d(1) + d(2);
+      const double h = R.in[kY][j] * at(0) + R.in[kMinusX][j] * at(1) + (R.in[kQz][j] + at(2));
+      if (r < 0.0 && std::max(h, 0.0) < t * -r) {
+        t = std::max(h, 0.0) / -r;
+        first = j;
+      }
+    }
+    if (first < 0) {
+      return false;  // the robot tips: Alg. 1 reports it
+    }
+    at += t * d;
+    // The cell of the contacts and the foot that touched down (at its plane now, h ≈ 0).
+    const double h_first =
+        R.in[kY][first] * at(0) + R.in[kMinusX][first] * at(1) + (R.in[kQz][first] + at(2));
+    cell = pass(R, at, Mg, std::nextafter(std::max(h_first, -R.noise(at)), kInf));
+    if (newton_step(cell, il, dv)) {
+      dv += at - v;
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -266,7 +277,7 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     return false;  // a frame resized by hand: leave it to the path search
   }
   const Eigen::Index cols = W.qy.cols();
-  // ---- the feet as rows, two per register; the padding foot far above the ground -------------
+  // ---- the feet as rows, four per step; the padding feet far above the ground ----------------
   double* const row[kRows] = {W.qy.data(), W.minus_qx.data(), W.qz.data(), W.K.data(), W.on.data()};
   double size2 = 0.0;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
@@ -288,23 +299,25 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     row[kQz][j] = kAboveGround;
   }
   const double L = size2 > 0.0 ? std::sqrt(size2) : 1.0;
+  const double il = 1.0 / L;
   const double Mg = robot.Mg;
+  const double inv_mg = 1.0 / Mg;
   const Rows R{{row[kY], row[kMinusX], row[kQz], row[kK]}, row[kOn], cols, size};
 
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  Cell cell = pass<true>(R, v, Mg);  // the all-feet cell
+  Cell cell = pass<true>(R, v, Mg, 0.0);  // the all-feet cell
   double changes = 0.0;
   double last = kInf;  // residual after the previous step, if its contact set was consistent
   for (int step = 1; step <= kMaxSteps; ++step) {
     Eigen::Vector3d dv;
-    if (!newton_step(cell, L, dv)) {
+    if (!newton_step(cell, il, dv) && (step == 1 || !tilt_step(R, n, v, Mg, L, il, cell, dv))) {
       summary.newton_steps = step - 1;
       return false;
     }
     v += dv;
-    cell = pass<false>(R, v, Mg);
+    cell = pass(R, v, Mg, -R.noise(v));
     changes += cell.changes;
     summary.newton_steps = step;
     if (cell.changes != 0.0) {
@@ -314,7 +327,7 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     if (cell.near != 0.0) {
       return false;  // not strictly complementary: let Alg. 1 handle the tie
     }
-    const double r = residual(cell, Mg, L);
+    const double r = residual(cell, inv_mg, il);
     if (r <= kPolished || (r >= 0.5 * last && r <= kRoundingCap)) {
       // ---- certified: the outputs, with the loads of eq. 3.7 -------------------------------
       frame.alpha = v(0);

@@ -2,7 +2,12 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "core/lanes.hpp"
 
 namespace slipwalk::friction::detail {
 
@@ -32,28 +37,32 @@ Contacts prepare(const contact::Robot& robot, contact::Frame& frame) {
   return out;
 }
 
-Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
-                         Eigen::Vector3d& b) {
-  // Scalars, not 2 × 2 temporaries: this loop is most of a viscous solve's per-foot cost.
+namespace {
+
+// The scalar assembly for any robot (anisotropic feet, or a frame whose rows do not fit): scalars,
+// not 2 × 2 temporaries, and no branch on the contact flags (a foot in the air, c = 0, adds exact
+// zeros, so the contact pattern, which changes from frame to frame, is never mispredicted).
+Contacts viscous_balance_general(const contact::Robot& robot, contact::Frame& frame,
+                                 Eigen::Matrix3d& M, Eigen::Vector3d& b) {
   Contacts out;
   double L2 = 0.0;
+  double c_sum = 0.0;
+  double aniso = 0.0;  // Σ c (|w₀| + |w₁|): positive iff some foot with friction has w ≠ 0
+  int active = 0;
   double m00 = 0.0, m01 = 0.0, m02 = 0.0, m11 = 0.0, m12 = 0.0, m22 = 0.0;
   double b0 = 0.0, b1 = 0.0, b2 = 0.0;
   for (int k = 0; k < frame.legs(); ++k) {
     const double c = friction_weight(robot, frame, k);
     frame.work_n(k) = c;
-    if (c == 0.0) {
-      continue;
-    }
-    ++out.active;
-    out.c_sum += c;
+    active += c > 0.0 ? 1 : 0;
+    c_sum += c;
     const double qx = frame.q(0, k);
     const double qy = frame.q(1, k);
-    L2 = std::max(L2, qx * qx + qy * qy);
+    L2 = std::max(L2, c > 0.0 ? qx * qx + qy * qy : 0.0);
     // c G = c (I + w wᵀ), the unscaled lever s = S q = (−q_y, q_x), and c G s, c G q̇.
     const double w0 = robot.w(0, k);
     const double w1 = robot.w(1, k);
-    out.anisotropic = out.anisotropic || w0 != 0.0 || w1 != 0.0;
+    aniso += c * (std::abs(w0) + std::abs(w1));
     const double g00 = c * (1.0 + w0 * w0);
     const double g01 = c * w0 * w1;
     const double g11 = c * (1.0 + w1 * w1);
@@ -71,12 +80,143 @@ Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eig
     b1 += gq1;
     b2 += -qy * gq0 + qx * gq1;
   }
+  out.active = active;
+  out.c_sum = c_sum;
+  out.anisotropic = aniso > 0.0;
   out.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
   out.inv_L = 1.0 / out.L;
   const double il = out.inv_L;
   M << m00, m01, m02 * il, m01, m11, m12 * il, m02 * il, m12 * il, m22 * il * il;
   b << b0, b1, b2 * il;
   return out;
+}
+
+using Row = contact::ViscousScratch::Row;
+
+}  // namespace
+
+// The isotropic assembly (every foot G = I, the usual robot), which also leaves the feet as rows in
+// frame.viscous (contact/robot.hpp) with their weights c_k. Returns false, with nothing assembled,
+// for an anisotropic robot.
+bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
+                          Eigen::Vector3d& b, Contacts& out) {
+  const int n = frame.legs();
+  double* const r[Row::kRows] = {
+      frame.viscous.rows.row(Row::kQx).data(),  frame.viscous.rows.row(Row::kQy).data(),
+      frame.viscous.rows.row(Row::kQdx).data(), frame.viscous.rows.row(Row::kQdy).data(),
+      frame.viscous.rows.row(Row::kC).data(),   frame.viscous.rows.row(Row::kFx).data(),
+      frame.viscous.rows.row(Row::kFy).data()};
+  // One scalar pass: the feet into the rows, for the force pass after the solve (loaded four at a
+  // time there, long after these stores: loading them here would stall on store forwarding), and
+  // the sums of M and b with G = I (seven, where the general loop needs nine and more products).
+  double aniso = 0.0;  // Σ c (|w₀| + |w₁|): positive iff some foot with friction has w ≠ 0
+  double L2 = 0.0;
+  int active = 0;
+  double sc = 0.0, scx = 0.0, scy = 0.0, scrr = 0.0, scdx = 0.0, scdy = 0.0, scm = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double c = friction_weight(robot, frame, k);
+    const double x = frame.q(0, k);
+    const double y = frame.q(1, k);
+    const double dx = frame.qdot(0, k);
+    const double dy = frame.qdot(1, k);
+    frame.work_n(k) = c;
+    r[Row::kC][k] = c;
+    r[Row::kQx][k] = x;
+    r[Row::kQy][k] = y;
+    r[Row::kQdx][k] = dx;
+    r[Row::kQdy][k] = dy;
+    aniso += c * (std::abs(robot.w(0, k)) + std::abs(robot.w(1, k)));
+    const double cx = c * x;
+    const double cy = c * y;
+    active += c > 0.0 ? 1 : 0;
+    L2 = std::max(L2, c > 0.0 ? x * x + y * y : 0.0);
+    sc += c;
+    scx += cx;
+    scy += cy;
+    scrr += cx * x + cy * y;
+    scdx += c * dx;
+    scdy += c * dy;
+    scm += cx * dy - cy * dx;  // (S q)ᵀ q̇ c = (−q_y q̇_x + q_x q̇_y) c
+  }
+  if (aniso > 0.0) {
+    return false;
+  }
+  out.active = active;
+  out.c_sum = sc;
+  out.anisotropic = false;
+  out.rows = true;
+  out.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
+  out.inv_L = 1.0 / out.L;
+  const double il = out.inv_L;
+  M << sc, 0.0, -scy * il, 0.0, sc, scx * il, -scy * il, scx * il, scrr * il * il;
+  b << scdx, scdy, scm * il;
+  return true;
+}
+
+namespace {
+
+template <int W>
+struct ForceLanes {
+  using V = typename core::Lanes<W>::V;
+  V fx{}, fy{}, mz{}, dissipation{}, scale{};
+};
+
+template <int W>
+[[gnu::always_inline]] inline void add_forces(double* const* r, Eigen::Index j, double v0,
+                                              double v1, double om, ForceLanes<W>& s) {
+  using L = core::Lanes<W>;
+  using V = typename L::V;
+  const auto abs = [](V a) {
+    return std::bit_cast<V>(std::bit_cast<typename L::M>(a) &
+                            (typename L::M{} + std::numeric_limits<std::int64_t>::max()));
+  };
+  const V c = L::load(r[Row::kC] + j);
+  const V x = L::load(r[Row::kQx] + j);
+  const V y = L::load(r[Row::kQy] + j);
+  const V dx = L::load(r[Row::kQdx] + j);
+  const V dy = L::load(r[Row::kQdy] + j);
+  const V u0 = L::splat(v0) - L::splat(om) * y + dx;
+  const V u1 = L::splat(v1) + L::splat(om) * x + dy;
+  const V F0 = -c * u0;  // zero for a foot without friction (c = 0) and the padding foot
+  const V F1 = -c * u1;
+  L::store(r[Row::kFx] + j, F0);
+  L::store(r[Row::kFy] + j, F1);
+  s.fx += F0;
+  s.fy += F1;
+  s.mz += x * F1 - y * F0;
+  s.dissipation -= F0 * u0 + F1 * u1;
+  s.scale += c * (abs(dx) + abs(dy) + abs(u0) + abs(u1));
+}
+
+}  // namespace
+
+SLIPWALK_CLONES ForceSums viscous_forces_rows(contact::Frame& frame, double v0, double v1,
+                                              double om) {
+  auto& rows = frame.viscous.rows;
+  double* const r[Row::kRows] = {rows.row(Row::kQx).data(),  rows.row(Row::kQy).data(),
+                                 rows.row(Row::kQdx).data(), rows.row(Row::kQdy).data(),
+                                 rows.row(Row::kC).data(),   rows.row(Row::kFx).data(),
+                                 rows.row(Row::kFy).data()};
+  ForceLanes<4> s;
+  for (Eigen::Index j = 0; j < rows.cols(); j += 4) {  // a multiple of four
+    add_forces<4>(r, j, v0, v1, om, s);
+  }
+  for (int k = 0; k < frame.legs(); ++k) {  // Fxy is 2 x N, foot by foot
+    frame.Fxy(0, k) = r[Row::kFx][k];
+    frame.Fxy(1, k) = r[Row::kFy][k];
+  }
+  const auto sum = [&s](auto ForceLanes<4>::*m) { return core::Lanes<4>::sum(s.*m); };
+  return {sum(&ForceLanes<4>::fx), sum(&ForceLanes<4>::fy), sum(&ForceLanes<4>::mz),
+          sum(&ForceLanes<4>::dissipation), sum(&ForceLanes<4>::scale)};
+}
+
+Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
+                         Eigen::Vector3d& b) {
+  Contacts out;
+  if (frame.viscous.fits(frame.legs()) && viscous_balance_rows(robot, frame, M, b, out)) {
+    return out;
+  }
+  return viscous_balance_general(robot, frame, M, b);
 }
 
 bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol) {
@@ -150,10 +290,24 @@ Eigen::Vector3d Psd3::solve(const Eigen::Vector3d& b) const {
 
 Eigen::Matrix3d Psd3::inverse() const {
   if (chol_) {
+    // M⁻¹ = L⁻ᵀ D⁻¹ L⁻¹ with the unit lower triangular L⁻¹ = [1 0 0; −l₁₀ 1 0; n₂₀ −l₂₁ 1],
+    // n₂₀ = l₂₁ l₁₀ − l₂₀, written out: independent products instead of three chained solves.
+    const double n10 = -l10_;
+    const double n20 = l21_ * l10_ - l20_;
+    const double n21 = -l21_;
+    const double e0 = inv_d_(0);
+    const double e1 = inv_d_(1);
+    const double e2 = inv_d_(2);
     Eigen::Matrix3d inv;
-    for (int j = 0; j < 3; ++j) {
-      inv.col(j) = solve(Eigen::Vector3d::Unit(j));
-    }
+    inv(2, 2) = e2;
+    inv(2, 1) = e2 * n21;
+    inv(2, 0) = e2 * n20;
+    inv(1, 1) = e1 + e2 * n21 * n21;
+    inv(1, 0) = e1 * n10 + e2 * n21 * n20;
+    inv(0, 0) = e0 + e1 * n10 * n10 + e2 * n20 * n20;
+    inv(0, 1) = inv(1, 0);
+    inv(0, 2) = inv(2, 0);
+    inv(1, 2) = inv(2, 1);
     return inv;
   }
   return V_ * inv_lambda_.asDiagonal() * V_.transpose();

@@ -26,6 +26,7 @@
 // and one relative rank tolerance serves every robot size.
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 
 #include "contact/robot.hpp"
 
@@ -36,12 +37,11 @@ namespace slipwalk::friction::detail {
 inline constexpr double kRankTol = 1e-12;
 
 /// c_k = μ_k F_z,k for a foot in contact that carries friction, 0 otherwise (and for NaN).
+/// Branch-free (selects), so that a pass over feet in and out of contact is not mispredicted.
 inline double friction_weight(const contact::Robot& robot, const contact::Frame& frame, int k) {
-  if (frame.contact[static_cast<std::size_t>(k)] == 0) {
-    return 0.0;
-  }
   const double c = robot.mu(k) * frame.Fz(k);
-  return c > 0.0 && std::isfinite(c) ? c : 0.0;
+  const bool on = frame.contact[static_cast<std::size_t>(k)] != 0;
+  return on && c > 0.0 && c < std::numeric_limits<double>::infinity() ? c : 0.0;
 }
 
 /// Per-solve constants. prepare() also stores, for an anisotropic robot, α_k of
@@ -52,6 +52,7 @@ struct Contacts {
   double inv_L = 1.0;        ///< 1 / L
   double c_sum = 0.0;        ///< Σ c_k, N
   bool anisotropic = false;  ///< some active foot has w_k ≠ 0
+  bool rows = false;         ///< viscous_balance left the feet as rows in frame.viscous
 };
 Contacts prepare(const contact::Robot& robot, contact::Frame& frame);
 
@@ -190,8 +191,31 @@ void viscous_system(const contact::Robot& robot, const contact::Frame& frame, do
 /// summary, M̃ and b̃ (φ ≡ 1) in scaled coordinates, and c_k in frame.work_n (0 for a foot
 /// without friction). L is known only at the end of the pass, so the lever column is summed
 /// unscaled (S q) and scaled afterwards.
+/// For an isotropic robot (every w_k = 0) the feet are also left as rows in frame.viscous
+/// (contact/robot.hpp, ViscousScratch), which the force pass of the viscous-Coulomb solve reads
+/// (Contacts::rows says so).
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
                          Eigen::Vector3d& b);
+
+/// The sums over the feet of a viscous-Coulomb force pass: Σ F_k, Σ (q_k × F_k)_z, the
+/// dissipation −Σ F_k·u_k and the size of the terms that cancel, Σ c_k ‖G_k‖ (‖q̇_k‖ + ‖J_k x‖).
+struct ForceSums {
+  double fx = 0.0;
+  double fy = 0.0;
+  double mz = 0.0;
+  double dissipation = 0.0;
+  double scale = 0.0;
+};
+
+/// The viscous-Coulomb forces F_k = −c_k u_k, u_k = v + ω S q_k + q̇_k, of an isotropic frame
+/// whose rows viscous_balance left (Contacts::rows), four feet at a time: written to frame.Fxy,
+/// summed as ForceSums (balance.cpp).
+ForceSums viscous_forces_rows(contact::Frame& frame, double v0, double v1, double om);
+
+/// viscous_balance's isotropic route (balance.cpp): false, with M, b and out not written, for an
+/// anisotropic robot. The frame's rows must fit it (ViscousScratch::fits).
+bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
+                          Eigen::Vector3d& b, Contacts& out);
 
 /// Writes v_body from scaled coordinates.
 inline void set_velocity(contact::Frame& frame, const Eigen::Vector3d& y, double L) {

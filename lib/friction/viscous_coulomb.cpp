@@ -17,6 +17,35 @@ namespace {
 /// unloaded instantiation is the flat path, with no code for f.
 /// finish() takes the assembled and factorized system (solve() below, or a ViscousSystem that
 /// connection::evaluate also builds A from).
+// The forces of any robot, foot by foot (the anisotropic metric G = I + w wᵀ included).
+detail::ForceSums viscous_forces(const contact::Robot& robot, contact::Frame& frame, double v0,
+                                 double v1, double om) {
+  detail::ForceSums s;
+  for (int k = 0; k < frame.legs(); ++k) {
+    const double c = frame.work_n(k);
+    const double qx = frame.q(0, k);
+    const double qy = frame.q(1, k);
+    const double u0 = v0 - om * qy + frame.qdot(0, k);
+    const double u1 = v1 + om * qx + frame.qdot(1, k);
+    const double w0 = robot.w(0, k);
+    const double w1 = robot.w(1, k);
+    const double wu = w0 * u0 + w1 * u1;  // G u = u + w (w·u)
+    const double F0 = -c * (u0 + w0 * wu);
+    const double F1 = -c * (u1 + w1 * wu);
+    frame.Fxy(0, k) = F0;  // zero for a foot without friction (c = 0)
+    frame.Fxy(1, k) = F1;
+    s.fx += F0;
+    s.fy += F1;
+    s.mz += qx * F1 - qy * F0;
+    s.dissipation -= F0 * u0 + F1 * u1;  // c uᵀG u
+    // c ‖G‖ (‖q̇‖ + ‖J x‖), in 1-norms (a magnitude, no square roots needed).
+    s.scale +=
+        c * (1.0 + w0 * w0 + w1 * w1) *
+        (std::abs(frame.qdot(0, k)) + std::abs(frame.qdot(1, k)) + std::abs(u0) + std::abs(u1));
+  }
+  return s;
+}
+
 template <bool kLoaded>
 void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Psd3& solver,
             const detail::Contacts& cs, const Eigen::Vector3d& b, const Eigen::Vector3d& load) {
@@ -34,36 +63,15 @@ void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Ps
   const double v0 = frame.v_body(0);
   const double v1 = frame.v_body(1);
   const double om = frame.v_body(2);
-  double fx = 0.0;
-  double fy = 0.0;
-  double mz = 0.0;
-  double scale = 0.0;
-  double dissipation = 0.0;
-  for (int k = 0; k < frame.legs(); ++k) {
-    const double c = frame.work_n(k);
-    const double qx = frame.q(0, k);
-    const double qy = frame.q(1, k);
-    const double u0 = v0 - om * qy + frame.qdot(0, k);
-    const double u1 = v1 + om * qx + frame.qdot(1, k);
-    const double w0 = robot.w(0, k);
-    const double w1 = robot.w(1, k);
-    const double wu = w0 * u0 + w1 * u1;  // G u = u + w (w·u)
-    const double F0 = -c * (u0 + w0 * wu);
-    const double F1 = -c * (u1 + w1 * wu);
-    frame.Fxy(0, k) = F0;  // zero for a foot without friction (c = 0)
-    frame.Fxy(1, k) = F1;
-    fx += F0;
-    fy += F1;
-    mz += qx * F1 - qy * F0;
-    dissipation -= F0 * u0 + F1 * u1;  // c uᵀG u
-    // c ‖G‖ (‖q̇‖ + ‖J x‖), in 1-norms (a magnitude, no square roots needed).
-    scale +=
-        c * (1.0 + w0 * w0 + w1 * w1) *
-        (std::abs(frame.qdot(0, k)) + std::abs(frame.qdot(1, k)) + std::abs(u0) + std::abs(u1));
-  }
+  const detail::ForceSums forces = cs.rows ? detail::viscous_forces_rows(frame, v0, v1, om)
+                                           : viscous_forces(robot, frame, v0, v1, om);
+  const double fx = forces.fx;
+  const double fy = forces.fy;
+  const double dissipation = forces.dissipation;
+  double scale = forces.scale;
   detail::BalanceSum sum;
   sum.force << fx, fy;
-  sum.moment = mz;
+  sum.moment = forces.mz;
   if constexpr (kLoaded) {
     // The load is one of the cancelling terms: Σ F_k + f = 0 and Σ M_k + M_f = 0.
     sum.force += load.head<2>();

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "contact/spring_support.hpp"
+#include "core/lanes.hpp"
 #include "friction/solvers.hpp"
 #include "planning/option_kernel.hpp"
 
@@ -457,11 +458,7 @@ bool integrate_option_scalar(const PlanRobot& robot, const PlanOptions& options,
 // (from the same state: a function of its own inputs only). As in contact/support_newton.cpp,
 // an AVX2 clone (without FMA, which would contract a·b + c and round differently) beside the
 // portable default, which runs the same code on pairs of SSE2 registers.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define SLIPWALK_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define SLIPWALK_CLONES
-#endif
+// (SLIPWALK_CLONES: core/lanes.hpp.)
 
 namespace {
 
