@@ -119,7 +119,7 @@ def scaling(t: c.Table, values: dict, axes) -> None:
                          label=f"our target: ≥ {ps.SPEEDUP_TARGET:g}× at every N ≥ "
                                f"{ps.SPEEDUP_FROM_N}" +
                                ("" if met is None else
-                                f" ({'met' if met else 'not met'}: smallest median "
+                                f"\n({'met' if met else 'not met'}: smallest median "
                                 f"×{values['speedup_min_from_N8']:.3g} at N = "
                                 f"{values['speedup_min_at_N']})"))
         ax_ratio.set_ylim(bottom=0)
@@ -143,7 +143,7 @@ def scaling(t: c.Table, values: dict, axes) -> None:
     ax_ratio.set_ylabel("MuJoCo time / our time")
     ax_ratio.set_title("(c) how much slower MuJoCo's step is\nthan our evaluation")
     if has_peer:
-        ax_ratio.legend(loc="upper left")
+        ax_ratio.legend(loc="lower right")
     else:
         values.update(ps.speedup_target({}), speedup_N=None, speedup_median=None)
 
