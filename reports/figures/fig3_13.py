@@ -27,6 +27,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
 import common as c  # noqa: E402
+import peer_speedup as ps  # noqa: E402
 
 NAME = "fig3_13"
 STUDY = "ch3_peer"
@@ -107,6 +108,20 @@ def scaling(t: c.Table, values: dict, axes) -> None:
         ribbon(ax_abs, Ns, q_peer, PEER, peer_label)
         ribbon(ax_ratio, Ns, q_ratio, c.REFERENCE, "MuJoCo / ours, per configuration")
         ax_ratio.axhline(1.0, color="0.4", lw=0.8)
+        # Our target: the whole model ≥ 100× faster than one MuJoCo step at every N ≥ 8 (the
+        # median per N; peer_speedup.py, which perf_legged.py's target table also reads).
+        by_n = ps.speedup_by_n(t)
+        values["speedup_N"] = sorted(by_n)
+        values["speedup_median"] = [by_n[n] for n in sorted(by_n)]
+        values.update(ps.speedup_target(by_n))
+        met = values["target_speedup_met"]
+        ax_ratio.axhline(ps.SPEEDUP_TARGET, color="k", ls="--", lw=0.9,
+                         label=f"our target: ≥ {ps.SPEEDUP_TARGET:g}× at every N ≥ "
+                               f"{ps.SPEEDUP_FROM_N}" +
+                               ("" if met is None else
+                                f"\n({'met' if met else 'not met'}: smallest median "
+                                f"×{values['speedup_min_from_N8']:.3g} at N = "
+                                f"{values['speedup_min_at_N']})"))
         ax_ratio.set_ylim(bottom=0)
     else:
         for ax in (ax_norm, ax_ratio):
@@ -129,6 +144,8 @@ def scaling(t: c.Table, values: dict, axes) -> None:
     ax_ratio.set_title("(c) how much slower MuJoCo's step is\nthan our evaluation")
     if has_peer:
         ax_ratio.legend(loc="lower right")
+    else:
+        values.update(ps.speedup_target({}), speedup_N=None, speedup_median=None)
 
 
 def parallel(t: c.Table, side: dict, values: dict, ax) -> None:

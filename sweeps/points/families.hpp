@@ -56,6 +56,10 @@ namespace slipwalk::sweeps::points {
 /// Scaling out: noop, scale_out and coordinator_throughput (scale_out.cpp).
 [[nodiscard]] std::vector<PointKind> scale_out_kinds();
 
+/// This machine's clock, peak flops per cycle and operation latencies, for the performance
+/// page's physical limits (machine_limits.cpp).
+[[nodiscard]] std::vector<PointKind> machine_limit_kinds();
+
 /// Every point kind of every family, in the order of families.cpp.
 [[nodiscard]] std::span<const PointKind> all_kinds();
 

@@ -72,6 +72,7 @@ const std::map<std::string, std::string>& bases() {
       {"calib_starts",
        "poses = 60\nsamples_per_cycle = 90\ncycles = 2\nstarts = 1\nmax_iterations = 5\n"},
       {"calib_accuracy", "poses = 60\nsamples_per_cycle = 90\ncycles = 2\n"},
+      {"machine_limits", "repeats = 1\nmin_repeat_s = 1e-5\n"},
       {"noop", "i = 1\n"},
   };
   return all;

@@ -1,0 +1,34 @@
+"""How much faster our model's evaluation is than one MuJoCo step, per number of legs N, on Fig.
+3.13's disk robots (DATA/ch3_peer/fig3_13a.csv, kind peer_scaling): per N the median over the
+warm-started configurations of time_mujoco_ns / time_ours_ns (each configuration timed on both
+simulators, so the ratio is paired). One definition for fig3_13.py and perf_legged.py."""
+from __future__ import annotations
+
+import numpy as np
+
+SPEEDUP_TARGET = 100.0  # our target: the whole model ≥ 100× faster than one MuJoCo 2.2.2 step
+SPEEDUP_FROM_N = 8      # ... at every N ≥ 8
+
+
+def speedup_by_n(t) -> dict[int, float]:
+    """N -> median MuJoCo / ours over the warm-started configurations with both times finite."""
+    warm = t.str("warmstart") == "solution"
+    n = t["N"].astype(int)
+    ratio = t["time_mujoco_ns"] / t["time_ours_ns"]
+    out = {}
+    for k in np.unique(n[warm]):
+        r = ratio[warm & (n == k) & np.isfinite(ratio)]
+        if r.size:
+            out[int(k)] = float(np.median(r))
+    return out
+
+
+def speedup_target(by_n: dict[int, float]) -> dict:
+    """The target's values: the smallest median speed-up over N ≥ SPEEDUP_FROM_N, the N where it
+    is, and whether it is met (None where no N ≥ SPEEDUP_FROM_N was measured)."""
+    over = {n: r for n, r in by_n.items() if n >= SPEEDUP_FROM_N}
+    if not over:
+        return {"speedup_min_from_N8": None, "speedup_min_at_N": None, "target_speedup_met": None}
+    n_min = min(over, key=over.get)
+    return {"speedup_min_from_N8": over[n_min], "speedup_min_at_N": n_min,
+            "target_speedup_met": over[n_min] >= SPEEDUP_TARGET}

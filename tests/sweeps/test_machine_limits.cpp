@@ -1,0 +1,126 @@
+// The machine-capability point (sweeps/points/machine_limits.cpp): check() rejects bad keys
+// naming them, and on x86-64 one cheap point measures numbers every x86-64 core obeys — a
+// clock of 0.5–7 GHz; at least one flop per cycle scalar; packed SSE2 twice the scalar rate
+// (the same instructions on two lanes: every x86-64 core issues them at the same rate), within
+// the noise of a shared machine; no more flops per cycle than the widest cores issue (4 scalar,
+// 8 SSE2, 16 AVX2 with or without FMA, with a quarter for noise: a rate above that means the
+// compiler merged the accumulator chains and the loop timed fewer operations than it counts);
+// latencies of 1–8 cycles for an add and a multiply, a divide and a square root slower than an
+// add. Elsewhere the columns are NaN with a message. These bound the machine, not our code's
+// speed: no timing of the model is asserted.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "sweeps/engine/point_kind.hpp"
+#include "sweeps/engine/spec.hpp"
+#include "sweeps/points/families.hpp"
+
+namespace slipwalk::sweeps {
+namespace {
+
+const PointKind& kind() {
+  const PointKind* k = find_point_kind(points::all_kinds(), "machine_limits");
+  if (k == nullptr) {
+    throw std::runtime_error("no point kind machine_limits");
+  }
+  return *k;
+}
+
+std::vector<Point> points(const std::string& params) {
+  return expand(parse_spec(
+      "study = \"t\"\nname = \"t\"\nkind = \"machine_limits\"\n[params]\n" + params, "m.toml"));
+}
+
+double num(const Cells& row, const std::string& name) {
+  const auto names = kind().column_names();
+  const auto at =
+      static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+  if (at >= names.size()) {
+    throw std::runtime_error("no column " + name);
+  }
+  if (const auto* d = std::get_if<double>(&row[at])) {
+    return *d;
+  }
+  return static_cast<double>(std::get<long long>(row[at]));
+}
+
+std::string text(const Cells& row, const std::string& name) {
+  const auto names = kind().column_names();
+  const auto at =
+      static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+  return std::get<std::string>(row.at(at));
+}
+
+TEST(MachineLimits, RejectsBadKeysNamingThem) {
+  const auto rejects = [](const std::string& params, const std::string& key) {
+    const std::vector<Point> pts = points(params);
+    ASSERT_EQ(pts.size(), 1u);
+    try {
+      kind().check(pts[0]);
+      ADD_FAILURE() << "accepted: " << params;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  rejects("repeats = 0\n", "repeats");
+  rejects("repeats = 2.5\n", "repeats");
+  rejects("min_repeat_s = 0\n", "min_repeat_s");
+  rejects("min_repeat_s = 5\n", "min_repeat_s");
+  rejects("repeats = 1000\nmin_repeat_s = 0.1\n", "repeats");  // minutes of work
+  rejects("frames = 3\n", "frames");
+}
+
+TEST(MachineLimits, MeasuresNumbersEveryCoreOfItsKindObeys) {
+  const std::vector<Point> pts = points("repeats = 5\nmin_repeat_s = 1e-3\n");
+  ASSERT_EQ(pts.size(), 1u);
+  kind().check(pts[0]);
+  const PointResult r = kind().run(pts[0]);
+  ASSERT_FALSE(r.failed) << r.message;
+  ASSERT_EQ(r.rows.size(), 1u);
+  const Cells& row = r.rows[0];
+  ASSERT_EQ(row.size(), kind().columns.size());
+#if defined(__x86_64__) && defined(__GNUC__)
+  EXPECT_EQ(text(row, "isa"), "x86-64");
+  const double ghz = num(row, "ghz");
+  EXPECT_GE(ghz, 0.5);
+  EXPECT_LE(ghz, 7.0);
+  const double scalar = num(row, "flops_per_cycle_scalar");
+  const double sse2 = num(row, "flops_per_cycle_sse2");
+  EXPECT_GE(scalar, 1.0);
+  EXPECT_LE(scalar, 4.0 * 1.25);
+  EXPECT_LE(sse2, 8.0 * 1.25);
+  EXPECT_NEAR(sse2 / scalar, 2.0, 0.7) << "SSE2 " << sse2 << ", scalar " << scalar;
+  if (num(row, "avx2") != 0.0) {
+    const double avx2 = num(row, "flops_per_cycle_avx2");
+    EXPECT_GE(avx2, 0.7 * sse2);
+    EXPECT_LE(avx2, 16.0 * 1.25);
+  }
+  if (num(row, "avx2") != 0.0 && num(row, "fma") != 0.0) {
+    const double fma = num(row, "flops_per_cycle_avx2_fma");
+    EXPECT_GE(fma, 0.7 * sse2);
+    EXPECT_LE(fma, 16.0 * 1.25);
+  } else {
+    EXPECT_TRUE(std::isnan(num(row, "flops_per_cycle_avx2_fma")));
+    EXPECT_FALSE(text(row, "message").empty());
+  }
+  const double add = num(row, "latency_add_cycles");
+  for (const char* op : {"latency_add_cycles", "latency_mul_cycles"}) {
+    EXPECT_GE(num(row, op), 1.0 * 0.8) << op;
+    EXPECT_LE(num(row, op), 8.0) << op;
+  }
+  EXPECT_GT(num(row, "latency_div_cycles"), add);
+  EXPECT_GT(num(row, "latency_sqrt_cycles"), 1.0);
+#else
+  EXPECT_EQ(text(row, "isa"), "portable");
+  EXPECT_TRUE(std::isnan(num(row, "ghz")));
+  EXPECT_FALSE(text(row, "message").empty());
+#endif
+}
+
+}  // namespace
+}  // namespace slipwalk::sweeps
