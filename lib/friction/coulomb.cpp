@@ -274,7 +274,12 @@ void Solver<kLoaded>::run() {
   const Eigen::Vector3d cold = y;
   Sums S;
   if (options_.warm_start) {
-    y = warm_start(cold, S);
+    // The previous frame's static feet held first (the polish needs no pass at the start).
+    const Eigen::Vector3d warm(frame_.v_body(0), frame_.v_body(1), frame_.v_body(2) * cs_.L);
+    if (n_held > 0 && D0_ > 0.0 && hold_over(held, n_held, warm)) {
+      return;
+    }
+    y = warm_start(cold, warm, S);
   } else {
     assemble<true>(y, 0.0, S);  // Φ(y) and ‖r_k‖² (g, H are not finite if some r_k = 0)
   }
@@ -298,11 +303,6 @@ void Solver<kLoaded>::run() {
       return;
     }
     classify(0.0);
-  }
-
-  // ---- a warm start: the previous frame's static feet, held -----------------------------------
-  if (n_held > 0 && hold_over(held, n_held, y, S)) {
-    return;
   }
 
   // ---- the fast path: Newton with the foot nearest to rest modelled exactly ------------------
@@ -337,12 +337,12 @@ void Solver<kLoaded>::run() {
 }
 
 template <bool kLoaded>
-Eigen::Vector3d Solver<kLoaded>::warm_start(const Eigen::Vector3d& cold, Sums& S) {
-  // frame.v_body in scaled coordinates y = (v_x, v_y, L ω), taken where Φ is no higher than at
-  // rest, Φ(0) = D(0) (known from setup: no pass; a NaN or a runaway start compares false), and
-  // no foot is exactly at rest (the answer of this very frame, solved again: the fast path needs
-  // r_k ≠ 0 to start). A refused start costs one assembly more.
-  const Eigen::Vector3d warm(frame_.v_body(0), frame_.v_body(1), frame_.v_body(2) * cs_.L);
+Eigen::Vector3d Solver<kLoaded>::warm_start(const Eigen::Vector3d& cold,
+                                            const Eigen::Vector3d& warm, Sums& S) {
+  // The start is taken where Φ is no higher than at rest, Φ(0) = D(0) (known from setup: no
+  // pass; a NaN or a runaway start compares false), and no foot is exactly at rest (the answer
+  // of this very frame, solved again: the fast path needs r_k ≠ 0 to start). A refused start
+  // costs one assembly more.
   assemble<true>(warm, 0.0, S);
   if (S.f <= D0_ && S.r2_min > 1e-28 * D0_ * D0_) {
     return warm;
@@ -368,7 +368,7 @@ int Solver<kLoaded>::held_static(std::array<int, kHeldMax>& held) const {
 
 template <bool kLoaded>
 bool Solver<kLoaded>::hold_over(const std::array<int, kHeldMax>& held, int n_held,
-                                const Eigen::Vector3d& y, Sums& S) {
+                                const Eigen::Vector3d& y) {
   // The active-set polish (coulomb_path.cpp) with those feet static: a static pair at distinct
   // points fixes y and is certified without a Newton step, one static foot in 1–3 steps. The
   // fast path alone needs its 40 steps and then the fallback for a pair (it models one foot
@@ -394,7 +394,6 @@ bool Solver<kLoaded>::hold_over(const std::array<int, kHeldMax>& held, int n_hel
         set_state(k, kSlip);
       }
     }
-    assemble<true>(y, 0.0, S);  // the polish's passes overwrote the row r2
   }
   return false;
 }

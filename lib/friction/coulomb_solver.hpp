@@ -138,18 +138,18 @@ class Solver {
   /// b₂ = Σ B_kᵀd_k and D(0) = Σ ‖d_k‖. The lever scale L is known only at the end, so the
   /// lever column is built from S q (unscaled) and scaled afterwards, rows and sums alike.
   void setup();
-  /// options.warm_start: frame.v_body (the previous frame's answer) as the start if Φ is no
-  /// higher there than at rest (D(0)) and no foot is exactly at rest, else `cold`; S
-  /// assembled at the start returned (coulomb.cpp, Algorithm step 1).
-  Eigen::Vector3d warm_start(const Eigen::Vector3d& cold, Sums& S);
+  /// options.warm_start: `warm` (frame.v_body, the previous frame's answer, in scaled
+  /// coordinates) as the start if Φ is no higher there than at rest (D(0)) and no foot is
+  /// exactly at rest, else `cold`; S assembled at the start returned (coulomb.cpp, step 1).
+  Eigen::Vector3d warm_start(const Eigen::Vector3d& cold, const Eigen::Vector3d& warm, Sums& S);
   /// options.warm_start: the feet marked static by the previous solve of this frame (work_idx,
   /// before setup() clears it), at most kHeldMax of them (none if more); how many.
   int held_static(std::array<int, kHeldMax>& held) const;
   /// options.warm_start: the active-set polish with the previous static feet (those still with
-  /// friction) static, from y (S assembled there); true when it certified and finished the
-  /// solve, else the states are all sliding again and S is assembled at y again.
-  bool hold_over(const std::array<int, kHeldMax>& held, int n_held, const Eigen::Vector3d& y,
-                 Sums& S);
+  /// friction) static, from y (any point, NaN included: the polish then fails); true when it
+  /// certified and finished the solve, else the states are all sliding again and the row r2 is
+  /// stale.
+  bool hold_over(const std::array<int, kHeldMax>& held, int n_held, const Eigen::Vector3d& y);
 
   // ---- passes over the feet: two feet per step, Eigen::Array2d being one SSE2 register -----
   // A foot a pass does not visit (mask 0) gets ρ ≥ 1 (finite) and the weight 0 in every sum.
