@@ -343,14 +343,15 @@ class Solver {
   /// false (y moved downhill, states arbitrary) when the model degenerates or stops converging: the
   /// smoothing path takes over.
   bool kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual);
-  /// The sliding foot whose slip the step p from y changes most relative to its size, if that is
-  /// more than 1 (the step crosses its kink), else −1 (one pass; after a failed line search).
-  /// The fast path with foot `held` static and a step that crossed the kink of `other`: the
-  /// active-set polish with both static; on success y and dual are the certified pair (finish()
-  /// them), else every foot but `held` slides again and the row r2 is stale (assemble at y).
+  /// The fast path with foot `held` static and a step that crossed the kink of `other` (or the
+  /// two slowest feet): the active-set polish with both static; on success y and dual are the
+  /// certified pair (finish() them), else every foot but `held` slides again and the row r2 is
+  /// stale (assemble at y before it is read).
   bool hold_pair(int held, int other, Eigen::Vector3d& y, Dual& dual);
   /// The two sliding feet slowest in slip speed ‖r_k(y)‖/c_k (−1 where there are fewer).
   [[nodiscard]] std::pair<int, int> slowest_two(const Eigen::Vector3d& y) const;
+  /// The sliding foot whose slip the step p from y changes most relative to its size, if that is
+  /// more than 1 (the step crosses its kink), else −1 (one pass; after a failed line search).
   [[nodiscard]] int most_crossed(const Eigen::Vector3d& y, const Eigen::Vector3d& p) const;
   /// The relative gap of a dual candidate of value `value`, imbalance h and largest ‖λ_k‖ lmax,
   /// against the primal `primal` at y (an upper bound of Φ(y) will do): the candidate balanced by
