@@ -17,6 +17,7 @@
 #include "contact/spring_support.hpp"
 #include "friction/solvers.hpp"
 #include "robots/robots.hpp"
+#include "support/count_allocations.hpp"
 #include "terrain/terrain.hpp"
 
 namespace slipwalk::friction {
@@ -100,6 +101,34 @@ TEST(CoulombWarm, WarmStartsAlongATurningWalkGiveTheColdAnswersInFewerSteps) {
   }
   EXPECT_GT(pairs, 50);  // the static pairs the warm start holds over are well represented
   EXPECT_LE(warm_steps, cold_steps);
+}
+
+TEST(CoulombWarm, WarmSolvesAlongTheWalkDoNotAllocate) {
+#ifdef SLIPWALK_SANITIZED
+  GTEST_SKIP() << "the sanitizers' runtime allocates on its own";
+#endif
+  const robots::Walker walker = turning_tripod();
+  const std::vector<Frame> frames = walk(walker, 300);
+  CoulombOptions warm;
+  warm.tol = kTol;
+  warm.warm_start = true;
+  Frame g(walker.robot);
+  long long allocations = 0;
+  // Twice along the walk, counted the second time: the first message a frame gets (here "static
+  // feet at distinct points", the static pairs) grows its string once.
+  for (int round = 0; round < 2; ++round) {
+    for (const Frame& input : frames) {
+      g.q = input.q;  // same sizes: no allocation
+      g.qdot = input.qdot;
+      g.contact = input.contact;
+      g.Fz = input.Fz;
+      const long long before = slipwalk::testing::allocation_count();
+      solve_coulomb(walker.robot, g, warm);
+      allocations += round == 1 ? slipwalk::testing::allocation_count() - before : 0;
+      ASSERT_TRUE(g.friction.converged) << g.friction.message;
+    }
+  }
+  EXPECT_EQ(allocations, 0);
 }
 
 TEST(CoulombWarm, TheFastPathsStaticPairsAgreeWithTheSmoothingPath) {
