@@ -252,8 +252,8 @@ void Solver<kLoaded>::run() {
     // which that minimizer approaches for large δ), or proves sliding as it runs away. If
     // neither (a load at its limit to rounding), the fast path is skipped and the smoothing
     // path below tries again at every stage.
-    const Eigen::Vector3d creep = viscous_.solve(load_ - b1_);
-    y = -viscous_.solve(b1_);
+    const Eigen::Vector3d creep = viscous().solve(load_ - b1_);
+    y = -viscous().solve(b1_);
     V_ = std::max({creep.norm(), y.norm(), D0_ / std::max(cs_.c_sum, kEps)});
     if (!(anchor_.rho < 1.0) && !find_anchor(creep) && sliding_ < 0.0) {
       report_sliding();
@@ -263,22 +263,24 @@ void Solver<kLoaded>::run() {
       hold_at_rest();  // the feet do not move (q̇ = 0): the anchor holds the load, y = 0
       return;
     }
-  } else {
-    y = -viscous_.solve(b1_);
   }
   // The start: the viscous-Coulomb velocity, without the load. With it, the viscous ansatz (no
   // static friction) creeps along the load at ~tan σ/μ m/s on a slope, ten times the gait's
   // speed at 17°, while Coulomb friction mostly holds it with static feet: its answer lies near
   // the unloaded one (on BigANT's 17° frames 4.5 Newton steps from here, 7 from the creep).
-  // Along a trajectory (options.warm_start) the previous frame's answer, where it is better.
+  // Along a trajectory (options.warm_start) the previous frame's answer, where it is better;
+  // its static feet are held first (the polish needs no pass at the start, nor the viscous
+  // velocity: unloaded, M₁ is factorized only if they do not certify).
+  const Eigen::Vector3d warm(frame_.v_body(0), frame_.v_body(1), frame_.v_body(2) * cs_.L);
+  if (options_.warm_start && n_held > 0 && D0_ > 0.0 && hold_over(held, n_held, warm)) {
+    return;
+  }
+  if constexpr (!kLoaded) {
+    y = -viscous().solve(b1_);
+  }
   const Eigen::Vector3d cold = y;
   Sums S;
   if (options_.warm_start) {
-    // The previous frame's static feet held first (the polish needs no pass at the start).
-    const Eigen::Vector3d warm(frame_.v_body(0), frame_.v_body(1), frame_.v_body(2) * cs_.L);
-    if (n_held > 0 && D0_ > 0.0 && hold_over(held, n_held, warm)) {
-      return;
-    }
     y = warm_start(cold, warm, S);
   } else {
     assemble<true>(y, 0.0, S);  // Φ(y) and ‖r_k‖² (g, H are not finite if some r_k = 0)
@@ -524,7 +526,7 @@ void Solver<kLoaded>::setup() {
   };
   fill(m1, v1, M1_, b1_);
   fill(m2, v2, M2_, b2_);
-  viscous_.factorize(M1_);
+  viscous_ready_ = false;  // factorized on first use (viscous())
 }
 
 // ---- the load ---------------------------------------------------------------------------------
@@ -537,7 +539,7 @@ bool Solver<kLoaded>::setup_load() {
     return false;
   }
   // The anchor: M₁ μ = f̃ (least norm); a load M₁ cannot reproduce has a part no foot feels.
-  const Eigen::Vector3d mu = viscous_.solve(load_);
+  const Eigen::Vector3d mu = viscous().solve(load_);
   const Eigen::Vector3d miss = load_ - M1_ * mu;
   if (!(miss.norm() <= 1e-9 * f_norm)) {
     const double slope = recession(miss / miss.norm());  // ≈ −‖miss‖: no foot feels it
@@ -1130,7 +1132,7 @@ template <bool kLoaded>
   if constexpr (kLoaded) {
     h -= load_;
   }
-  const Eigen::Vector3d mu = viscous_.solve(h);
+  const Eigen::Vector3d mu = viscous().solve(h);
   double lmax2 = 0.0;
   double value = 0.0;
   sum = detail::BalanceSum{};

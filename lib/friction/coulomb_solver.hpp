@@ -138,6 +138,14 @@ class Solver {
   /// b₂ = Σ B_kᵀd_k and D(0) = Σ ‖d_k‖. The lever scale L is known only at the end, so the
   /// lever column is built from S q (unscaled) and scaled afterwards, rows and sums alike.
   void setup();
+  /// M₁ factorized, on first use: a warm start whose static feet certify never needs it.
+  const detail::Psd3& viscous() {
+    if (!viscous_ready_) {
+      viscous_.factorize(M1_);
+      viscous_ready_ = true;
+    }
+    return viscous_;
+  }
   /// options.warm_start: `warm` (frame.v_body, the previous frame's answer, in scaled
   /// coordinates) as the start if Φ is no higher there than at rest (D(0)) and no foot is
   /// exactly at rest, else `cold`; S assembled at the start returned (coulomb.cpp, step 1).
@@ -440,7 +448,8 @@ class Solver {
   double V_ = 0.0;                                  ///< loaded: velocity scale (runaway test)
   double sliding_ = 0.0;                            ///< loaded: recession slope < 0 once found
   detail::Psd3 dual_;     ///< M₂ = Σ B_kᵀB_k (least norm on its range)
-  detail::Psd3 viscous_;  ///< M₁, the viscous-Coulomb system
+  detail::Psd3 viscous_;  ///< M₁, the viscous-Coulomb system (through viscous())
+  bool viscous_ready_ = false;
   Eigen::Matrix3d M1_ = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d M2_ = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b1_ = Eigen::Vector3d::Zero();
