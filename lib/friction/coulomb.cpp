@@ -27,6 +27,18 @@
 //
 // Algorithm (always terminates: every loop is bounded by options.max_iterations).
 //  1. Start at the viscous-Coulomb solution (if nothing slips there, certify that at once).
+//     Along a trajectory (options.warm_start) start instead at the frame's v_body, the previous
+//     frame's answer: successive frames differ little, so it lies within a Newton step or two of
+//     the answer and its static foot is already the slowest (the kink model's choice below),
+//     where the viscous start, which has no static friction, is typically 4 steps away. Safe
+//     whatever v_body holds: the certificate (step 4) is built from the final point alone, so a
+//     start only costs iterations; it is taken only where Φ is no higher than at rest, D(0)
+//     (a NaN or a runaway v_body compares false) and no foot is exactly at rest there (the fast
+//     path needs r_k ≠ 0), and the fallback (step 3) always restarts from the viscous start.
+//     The previous frame's static feet (the marks in frame.work_idx) are tried first: the
+//     active-set polish (coulomb_path.cpp) with them static certifies a static pair at once
+//     (two distinct points fix the velocity) and a single static foot in 1–3 steps; if it does
+//     not certify, the solve goes on as if it had not been tried (one pass and a polish lost).
 //  2. Fast path (kink_newton): Newton's method on the exact D, in which the foot nearest to rest
 //     (slowest in slip speed ‖r_k‖/c_k) is modelled exactly, kink included, whenever the plain
 //     Newton step would change its slip by more than its size: the step minimizes the quadratic
@@ -37,7 +49,11 @@
 //     point, λ_k = n_k + n_k⊥ (t_kᵀp)/‖r_k‖ (t_k = B_kᵀn_k⊥), which the Newton equation balances
 //     exactly and whose norms exceed 1 by O(‖p‖²), and the kink foot's λ from its model. It is
 //     tried once the predicted decrease is below 1e-3 tol D; the answer is then the Newton point
-//     y + p (finish), exact to ~1e-13 whatever the tolerance.
+//     y + p (finish), exact to ~1e-13 whatever the tolerance. Two feet at rest at once (on a
+//     turning walk the inner pair, in one frame in eight) defeat the one-foot model: the plain
+//     steps oscillate across the second foot's kink. The fast path then tries the active-set
+//     polish with both static, once when a step with a foot held is cut short (the held foot and
+//     the foot the step crossed), and once after kPairAfter steps (the two slowest feet).
 //  3. Fallback (coulomb_path.cpp), when the fast path stalls — several feet at rest at once, a
 //     degenerate model: the smoothing path from the viscous start with an active-set polish at
 //     the end of each stage, which also handles static feet at distinct points.
@@ -75,8 +91,10 @@
 // direction of D at the optimum: a continuum of minimizers (the even-N 1-D example of §3.1.2).
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "core/csv.hpp"
 #include "friction/coulomb_solver.hpp"
@@ -87,6 +105,9 @@ namespace coulomb {
 
 namespace {
 constexpr int kKinkSteps = 40;  // the fast path's steps before the smoothing path takes over
+// The fast path's steps before its two slowest feet are tried as a static pair (kink_newton):
+// a frame with at most one static foot certifies in 3–5 (the hexapod study's mean is 4.1).
+constexpr int kPairAfter = 6;
 // The shortest step the fast path's backtracking tries (halving from 1/2). Far from the optimum
 // the Newton model of a sum of norms can promise more decrease than D itself (it has no
 // curvature along a sliding foot's slip, so a foot whose slip the step reverses is modelled as
@@ -212,6 +233,12 @@ void Solver<kLoaded>::run() {
   s.route = contact::FrictionSummary::Route::kDirect;
 
   // ---- per-foot constants, Σ B_kᵀB_k (dual projection, degeneracy), the viscous start -----
+  // A warm start also keeps the previous solve's static feet (setup() overwrites the marks).
+  std::array<int, kHeldMax> held{};
+  int n_held = 0;
+  if (options_.warm_start) {
+    n_held = held_static(held);
+  }
   setup();
   dual_.factorize(M2_);
   Eigen::Vector3d y;
@@ -225,8 +252,8 @@ void Solver<kLoaded>::run() {
     // which that minimizer approaches for large δ), or proves sliding as it runs away. If
     // neither (a load at its limit to rounding), the fast path is skipped and the smoothing
     // path below tries again at every stage.
-    const Eigen::Vector3d creep = viscous_.solve(load_ - b1_);
-    y = -viscous_.solve(b1_);
+    const Eigen::Vector3d creep = viscous().solve(load_ - b1_);
+    y = -viscous().solve(b1_);
     V_ = std::max({creep.norm(), y.norm(), D0_ / std::max(cs_.c_sum, kEps)});
     if (!(anchor_.rho < 1.0) && !find_anchor(creep) && sliding_ < 0.0) {
       report_sliding();
@@ -236,18 +263,31 @@ void Solver<kLoaded>::run() {
       hold_at_rest();  // the feet do not move (q̇ = 0): the anchor holds the load, y = 0
       return;
     }
-  } else {
-    y = -viscous_.solve(b1_);
   }
   // The start: the viscous-Coulomb velocity, without the load. With it, the viscous ansatz (no
   // static friction) creeps along the load at ~tan σ/μ m/s on a slope, ten times the gait's
   // speed at 17°, while Coulomb friction mostly holds it with static feet: its answer lies near
   // the unloaded one (on BigANT's 17° frames 4.5 Newton steps from here, 7 from the creep).
-
-  // ---- trivial cases: no friction, nothing moves, or the viscous start slips nowhere -------
-  const int n = std::max(cs_.active, 1);
+  // Along a trajectory (options.warm_start) the previous frame's answer, where it is better;
+  // its static feet are held first (the polish needs no pass at the start, nor the viscous
+  // velocity: unloaded, M₁ is factorized only if they do not certify).
+  const Eigen::Vector3d warm(frame_.v_body(0), frame_.v_body(1), frame_.v_body(2) * cs_.L);
+  if (options_.warm_start && n_held > 0 && D0_ > 0.0 && hold_over(held, n_held, warm)) {
+    return;
+  }
+  if constexpr (!kLoaded) {
+    y = -viscous().solve(b1_);
+  }
+  const Eigen::Vector3d cold = y;
   Sums S;
-  assemble<true>(y, 0.0, S);  // Φ(y) and ‖r_k‖² (g, H are not finite if some r_k = 0)
+  if (options_.warm_start) {
+    y = warm_start(cold, warm, S);
+  } else {
+    assemble<true>(y, 0.0, S);  // Φ(y) and ‖r_k‖² (g, H are not finite if some r_k = 0)
+  }
+
+  // ---- trivial cases: no friction, nothing moves, or the start slips nowhere ---------------
+  const int n = std::max(cs_.active, 1);
   const double D = dissipation(S.f, y);
   const double Dref = std::max(D, D0_);
   if (cs_.active == 0 || Dref == 0.0) {
@@ -274,7 +314,6 @@ void Solver<kLoaded>::run() {
     anchored = anchor_.rho < 1.0;
   }
   if (options_.fast_path && anchored && S.r2_min > 1e-28 * D0_ * D0_) {
-    const Eigen::Vector3d start = y;
     Dual dual;
     s.route = contact::FrictionSummary::Route::kFastPath;
     if (kink_newton(y, S, Dref, dual)) {
@@ -288,14 +327,77 @@ void Solver<kLoaded>::run() {
       }
     }
     // Several feet near rest at once (e.g. a mirror-symmetric pair): the path takes over from
-    // the viscous start, every foot sliding.
+    // the viscous start (also after a warm start: the fallback is the same with or without),
+    // every foot sliding.
     s.route = contact::FrictionSummary::Route::kFallback;
-    y = start;
+    y = cold;
     classify(0.0);
   }
 
   // ---- the fallback: the smoothing path (coulomb_path.cpp) -----------------------------------
   path(y, S, Dref);
+}
+
+template <bool kLoaded>
+Eigen::Vector3d Solver<kLoaded>::warm_start(const Eigen::Vector3d& cold,
+                                            const Eigen::Vector3d& warm, Sums& S) {
+  // The start is taken where Φ is no higher than at rest, Φ(0) = D(0) (known from setup: no
+  // pass; a NaN or a runaway start compares false), and no foot is exactly at rest (the answer
+  // of this very frame, solved again: the fast path needs r_k ≠ 0 to start). A refused start
+  // costs one assembly more.
+  assemble<true>(warm, 0.0, S);
+  if (S.f <= D0_ && S.r2_min > 1e-28 * D0_ * D0_) {
+    return warm;
+  }
+  assemble<true>(cold, 0.0, S);
+  return cold;
+}
+
+template <bool kLoaded>
+int Solver<kLoaded>::held_static(std::array<int, kHeldMax>& held) const {
+  const auto n = static_cast<std::size_t>(frame_.legs());
+  int count = 0;
+  for (std::size_t k = 0; k < frame_.work_idx.size() && k < n; ++k) {
+    if (frame_.work_idx[k] == kStatic) {
+      if (count == kHeldMax) {
+        return 0;  // a rigid many-legged stance: the fast path and the fallback find it
+      }
+      held[static_cast<std::size_t>(count++)] = static_cast<int>(k);
+    }
+  }
+  return count;
+}
+
+template <bool kLoaded>
+bool Solver<kLoaded>::hold_over(const std::array<int, kHeldMax>& held, int n_held,
+                                const Eigen::Vector3d& y) {
+  // The active-set polish (coulomb_path.cpp) with those feet static: a static pair at distinct
+  // points fixes y and is certified without a Newton step, one static foot in 1–3 steps. The
+  // fast path alone needs its 40 steps and then the fallback for a pair (it models one foot
+  // exactly), and on a walk a pair holds for many frames (the inner feet of a turn).
+  int marked = 0;
+  for (int i = 0; i < n_held; ++i) {
+    const int k = held[static_cast<std::size_t>(i)];
+    if (state(k) != kInactive) {  // still in contact, with friction
+      set_state(k, kStatic);
+      ++marked;
+    }
+  }
+  if (marked > 0) {
+    Eigen::Vector3d yp = y;
+    Dual dual;
+    frame_.friction.route = contact::FrictionSummary::Route::kFastPath;
+    if (polish(yp, 0.0, dual)) {
+      finish(yp, dual);
+      return true;
+    }
+    for (int k = 0; k < frame_.legs(); ++k) {
+      if (state(k) != kInactive) {
+        set_state(k, kSlip);
+      }
+    }
+  }
+  return false;
 }
 
 template <bool kLoaded>
@@ -424,7 +526,7 @@ void Solver<kLoaded>::setup() {
   };
   fill(m1, v1, M1_, b1_);
   fill(m2, v2, M2_, b2_);
-  viscous_.factorize(M1_);
+  viscous_ready_ = false;  // factorized on first use (viscous())
 }
 
 // ---- the load ---------------------------------------------------------------------------------
@@ -437,7 +539,7 @@ bool Solver<kLoaded>::setup_load() {
     return false;
   }
   // The anchor: M₁ μ = f̃ (least norm); a load M₁ cannot reproduce has a part no foot feels.
-  const Eigen::Vector3d mu = viscous_.solve(load_);
+  const Eigen::Vector3d mu = viscous().solve(load_);
   const Eigen::Vector3d miss = load_ - M1_ * mu;
   if (!(miss.norm() <= 1e-9 * f_norm)) {
     const double slope = recession(miss / miss.norm());  // ≈ −‖miss‖: no foot feels it
@@ -545,7 +647,25 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
   int forced = -1;          // a kink foot chosen after a failed line search (below)
   double lm = 0.0;          // curvature of M₂ added to the kink model after failed steps (below)
   bool retried = false;     // a plain step retried with the foot it crossed
+  bool paired = false;      // the held foot and the foot a step crossed tried as a static pair
+  bool slow_pair = false;   // the two slowest feet tried as a static pair (kPairAfter)
   for (int it = 0;; ++it) {
+    if (it == kPairAfter && !slow_pair) {
+      // Still uncertified: the two feet slowest in slip speed (the held one first) as a
+      // static pair, e.g. a mirror pair the kink model alternates between.
+      slow_pair = true;
+      const auto [a, b] = slowest_two(y);
+      const int first = held >= 0 ? held : a;
+      const int second = held >= 0 ? a : b;
+      if (second >= 0) {
+        set_state(first, kStatic);
+        if (hold_pair(first, second, y, dual)) {
+          return true;
+        }
+        set_state(first, held >= 0 ? kStatic : kSlip);
+        assemble<false>(y, 0.0, S);
+      }
+    }
     // The kink foot: the held one, or the sliding foot slowest in slip speed ‖r_k‖/c_k
     // (found without branches: which foot it is varies from frame to frame).
     int ks = held >= 0 ? held : forced;
@@ -663,6 +783,7 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
     const bool keep = stick && held == ks;
     set_state(ks, keep ? kStatic : kSlip);
     bool accepted = false;
+    const Eigen::Vector3d from = y;
     for (double t = 0.5; t >= kMinStep && !accepted; t *= 0.5) {
       const Eigen::Vector3d yt = y + t * st.p;
       const double Dv =
@@ -672,6 +793,18 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
         D = Dv;
         accepted = true;
         precision = t < kDeepCut ? kCutPrecision : precision;
+      }
+    }
+    if (keep && !paired) {
+      // A foot held static and a step D cuts short: it crossed the kink of a foot the model
+      // (one foot exact) cannot see, typically a second foot at rest (on a turning walk the
+      // inner feet, for many frames), about which the plain steps would oscillate until
+      // kKinkSteps and the fallback. The active-set polish with both static certifies such a
+      // pair without a Newton step (two distinct static points fix y); tried once per solve.
+      paired = true;
+      const int other = most_crossed(from, st.p);
+      if (other >= 0 && hold_pair(ks, other, y, dual)) {
+        return true;
       }
     }
     if (!accepted) {
@@ -707,6 +840,46 @@ bool Solver<kLoaded>::kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual
     }
     held = keep ? ks : -1;
   }
+}
+
+template <bool kLoaded>
+std::pair<int, int> Solver<kLoaded>::slowest_two(const Eigen::Vector3d& y) const {
+  int a = -1;
+  int b = -1;
+  double va = kInf;
+  double vb = kInf;
+  for (int k = 0; k < frame_.legs(); ++k) {
+    if (state(k) != kSlip) {
+      continue;
+    }
+    const double v = residual(k, y).squaredNorm() * frame_.coulomb.inv_weight2(k);
+    if (v < va) {
+      b = a;
+      vb = va;
+      a = k;
+      va = v;
+    } else if (v < vb) {
+      b = k;
+      vb = v;
+    }
+  }
+  return {a, b};
+}
+
+template <bool kLoaded>
+bool Solver<kLoaded>::hold_pair(int held, int other, Eigen::Vector3d& y, Dual& dual) {
+  set_state(other, kStatic);
+  Eigen::Vector3d yp = y;
+  if (polish(yp, 0.0, dual)) {
+    y = yp;
+    return true;
+  }
+  for (int k = 0; k < frame_.legs(); ++k) {  // the polish may have marked more feet static
+    if (state(k) != kInactive && k != held) {
+      set_state(k, kSlip);
+    }
+  }
+  return false;
 }
 
 template <bool kLoaded>
@@ -959,7 +1132,7 @@ template <bool kLoaded>
   if constexpr (kLoaded) {
     h -= load_;
   }
-  const Eigen::Vector3d mu = viscous_.solve(h);
+  const Eigen::Vector3d mu = viscous().solve(h);
   double lmax2 = 0.0;
   double value = 0.0;
   sum = detail::BalanceSum{};

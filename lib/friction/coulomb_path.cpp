@@ -182,8 +182,10 @@ StaticDual Solver<kLoaded>::static_duals(const Eigen::Vector3d& y, const Eigen::
       continue;
     }
     const Mat23 Bk = B(k);
-    const Eigen::Vector2d lam = Bk.leftCols<2>().partialPivLu().solve(
-        Eigen::Vector2d(-(weight(k) / c_static_) * gp.head<2>()));
+    // B_k,xy = c_k W_k is symmetric positive definite (W_k ⪰ I): its closed-form inverse
+    // (one division) in place of an LU, on the path of every polish step.
+    const Eigen::Vector2d lam =
+        Bk.leftCols<2>().inverse() * Eigen::Vector2d(-(weight(k) / c_static_) * gp.head<2>());
     frame_.work_2n.col(k) = lam;
     st.lmax = std::max(st.lmax, lam.norm());
     st.value += lam.dot(d(k));
@@ -375,7 +377,7 @@ bool Solver<kLoaded>::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
     // lever of the first static foot: B_xy⁻¹ B_ω.
     dim = 1;
     const Mat23 Bf = B(first);
-    const Eigen::Vector2d sp = Bf.leftCols<2>().partialPivLu().solve(Eigen::Vector2d(Bf.col(2)));
+    const Eigen::Vector2d sp = Bf.leftCols<2>().inverse() * Eigen::Vector2d(Bf.col(2));
     y.head<2>() = -(GS.inverse() * hS) - y(2) * sp;
     e = Eigen::Vector3d(-sp(0), -sp(1), 1.0).normalized();
   } else if (n_static > 0) {

@@ -8,8 +8,10 @@
 // none of that code exists (if constexpr), so the flat solve is unchanged.
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "friction/balance.hpp"
 #include "friction/solvers.hpp"
@@ -22,6 +24,7 @@ inline constexpr double kBig = 1e300;  // ‖r‖² of a foot a pass does not vi
 inline constexpr int kSlip = 0;
 inline constexpr int kStatic = 1;
 inline constexpr int kInactive = -1;
+inline constexpr int kHeldMax = 8;  // static feet a warm start holds over (Solver::hold_over)
 using Mat23 = Eigen::Matrix<double, 2, 3>;
 
 /// The sums of one pass over the feet at a point y with smoothing δ (δ = 0: the exact D).
@@ -135,6 +138,26 @@ class Solver {
   /// b₂ = Σ B_kᵀd_k and D(0) = Σ ‖d_k‖. The lever scale L is known only at the end, so the
   /// lever column is built from S q (unscaled) and scaled afterwards, rows and sums alike.
   void setup();
+  /// M₁ factorized, on first use: a warm start whose static feet certify never needs it.
+  const detail::Psd3& viscous() {
+    if (!viscous_ready_) {
+      viscous_.factorize(M1_);
+      viscous_ready_ = true;
+    }
+    return viscous_;
+  }
+  /// options.warm_start: `warm` (frame.v_body, the previous frame's answer, in scaled
+  /// coordinates) as the start if Φ is no higher there than at rest (D(0)) and no foot is
+  /// exactly at rest, else `cold`; S assembled at the start returned (coulomb.cpp, step 1).
+  Eigen::Vector3d warm_start(const Eigen::Vector3d& cold, const Eigen::Vector3d& warm, Sums& S);
+  /// options.warm_start: the feet marked static by the previous solve of this frame (work_idx,
+  /// before setup() clears it), at most kHeldMax of them (none if more); how many.
+  int held_static(std::array<int, kHeldMax>& held) const;
+  /// options.warm_start: the active-set polish with the previous static feet (those still with
+  /// friction) static, from y (any point, NaN included: the polish then fails); true when it
+  /// certified and finished the solve, else the states are all sliding again and the row r2 is
+  /// stale.
+  bool hold_over(const std::array<int, kHeldMax>& held, int n_held, const Eigen::Vector3d& y);
 
   // ---- passes over the feet: two feet per step, Eigen::Array2d being one SSE2 register -----
   // A foot a pass does not visit (mask 0) gets ρ ≥ 1 (finite) and the weight 0 in every sum.
@@ -328,6 +351,13 @@ class Solver {
   /// false (y moved downhill, states arbitrary) when the model degenerates or stops converging: the
   /// smoothing path takes over.
   bool kink_newton(Eigen::Vector3d& y, Sums& S, double Dref, Dual& dual);
+  /// The fast path with foot `held` static and a step that crossed the kink of `other` (or the
+  /// two slowest feet): the active-set polish with both static; on success y and dual are the
+  /// certified pair (finish() them), else every foot but `held` slides again and the row r2 is
+  /// stale (assemble at y before it is read).
+  bool hold_pair(int held, int other, Eigen::Vector3d& y, Dual& dual);
+  /// The two sliding feet slowest in slip speed ‖r_k(y)‖/c_k (−1 where there are fewer).
+  [[nodiscard]] std::pair<int, int> slowest_two(const Eigen::Vector3d& y) const;
   /// The sliding foot whose slip the step p from y changes most relative to its size, if that is
   /// more than 1 (the step crosses its kink), else −1 (one pass; after a failed line search).
   [[nodiscard]] int most_crossed(const Eigen::Vector3d& y, const Eigen::Vector3d& p) const;
@@ -418,7 +448,8 @@ class Solver {
   double V_ = 0.0;                                  ///< loaded: velocity scale (runaway test)
   double sliding_ = 0.0;                            ///< loaded: recession slope < 0 once found
   detail::Psd3 dual_;     ///< M₂ = Σ B_kᵀB_k (least norm on its range)
-  detail::Psd3 viscous_;  ///< M₁, the viscous-Coulomb system
+  detail::Psd3 viscous_;  ///< M₁, the viscous-Coulomb system (through viscous())
+  bool viscous_ready_ = false;
   Eigen::Matrix3d M1_ = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d M2_ = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b1_ = Eigen::Vector3d::Zero();

@@ -50,6 +50,13 @@ struct CoulombOptions {
   int max_iterations = 500;  ///< Newton steps (fast path, smoothing path and polish together)
   bool fast_path = true;     ///< try Newton with the kink model first (friction/coulomb.cpp);
                              ///< false: the smoothing path alone (a reference for tests)
+  bool warm_start = false;   ///< along a trajectory: start from what the previous solve left
+                             ///< in the frame, v_body (if the dissipation is no higher there
+                             ///< than at rest; else, NaN or absurd, the viscous start) and its
+                             ///< static feet (work_idx; held if they certify) instead of the
+                             ///< viscous-Coulomb velocity. Safe for any frame contents: the
+                             ///< certificate does not depend on the start, which only costs
+                             ///< iterations. false: independent frames, today's behaviour.
 };
 
 /// Classical Coulomb friction, F_k = −μ_k F_z,k u_k/‖u_k‖ (eq. 3.13; anisotropic: the friction

@@ -2,9 +2,15 @@
 // solver is, on random frames of a hexapod or a disk robot (the cost of accuracy, and the
 // per-frame cost and its growth with the number of legs; thesis §3.6.1 for the thesis' timings).
 //
-// A point builds `frames` random frames (jittered feet, some lifted, random foot velocities) and
-// runs each through contact::spring_support, so the contact sets and loads are the model's own
-// (a hexapod frame has 3–6 feet down). It then
+// A point builds `frames` frames and runs each through contact::spring_support, so the contact
+// sets and loads are the model's own. sequence = "independent" (the default): random frames
+// (jittered feet, some lifted, random foot velocities; a hexapod frame has 3–6 feet down), each
+// solved on its own. sequence = "trajectory" (hexapod only): successive 100 Hz frames of BigANT's
+// alternating tripod walking and turning (robots::bigant_tripod, its legs, mass and stiffness;
+// §3.5.1.1's frame rate; 3–6 feet down, the hand-overs included), solved in order as a
+// simulation would, each starting from the previous frame's answer: Coulomb warm-starts from it
+// (CoulombOptions::warm_start) and every method gets the previous v_body and static marks copied
+// in (the same copy for all, so the times compare). It then
 //  * solves every frame with classical Coulomb friction to a relative duality gap of 1e-14 (the
 //    reference; frames whose reference is not unique or not certified are left out of the error
 //    statistics and counted),
@@ -26,6 +32,7 @@
 #include "contact/spring_support.hpp"
 #include "core/csv.hpp"
 #include "friction/solvers.hpp"
+#include "robots/robots.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/point_reader.hpp"
 #include "sweeps/engine/random.hpp"
@@ -52,8 +59,18 @@ const std::vector<std::string_view> kMethodNames = {"viscous", "epsilon",    "co
   return m == Method::kViscous || m == Method::kEpsilon || m == Method::kCoulomb;
 }
 
-const std::vector<std::string_view> kCostKeys = {"robot",  "N",    "method",  "eps",   "tol",
-                                                 "frames", "seed", "repeats", "speed", "spread"};
+const std::vector<std::string_view> kCostKeys = {"robot", "N",      "method",  "eps",
+                                                 "tol",   "frames", "seed",    "repeats",
+                                                 "speed", "spread", "sequence"};
+
+const std::vector<std::string_view> kSequenceNames = {"independent", "trajectory"};
+
+// The trajectory: BigANT's tripod at 0.38 Hz (a cycle of 263.2 frames, no whole number: the
+// frames of successive cycles differ) steering left (0.3: the inner side's shorter strokes make
+// stance feet slip and turn the body; the inner pair often stands still), sampled at 100 Hz.
+constexpr double kTrajectoryFrequency = 0.38;  // Hz
+constexpr double kTrajectorySteer = 0.3;
+constexpr double kFrameStep = 0.01;  // s
 
 struct CostInputs {
   std::string robot = "hexapod";
@@ -64,14 +81,24 @@ struct CostInputs {
   long long frames = 200;
   long long seed = 0;
   long long repeats = 11;
-  double speed = 0.1;   ///< m/s: the feet's common backward speed relative to the body
-  double spread = 0.5;  ///< relative spread of the feet's velocities around it
+  double speed = 0.1;       ///< m/s: the feet's common backward speed relative to the body
+  double spread = 0.5;      ///< relative spread of the feet's velocities around it
+  bool trajectory = false;  ///< sequence = "trajectory": successive frames of a walk
 };
 
 CostInputs read_cost(const Point& point) {
   const Reader r(point, "legged_cost", kCostKeys);
   CostInputs in;
   in.robot = r.choice("robot", {"hexapod", "disk"});
+  in.trajectory = r.choice("sequence", kSequenceNames) == "trajectory";
+  if (in.trajectory && in.robot != "hexapod") {
+    r.fail("sequence", "\"trajectory\" needs robot = \"hexapod\" (BigANT's tripod walk)");
+  }
+  for (const std::string_view key : {"speed", "spread"}) {
+    if (in.trajectory && r.has(key)) {
+      r.fail(key, "only used with sequence = \"independent\" (the walk sets the feet's speeds)");
+    }
+  }
   if (in.robot == "hexapod") {
     in.n = static_cast<int>(r.integer("N", 6, 6, 6));
   } else {
@@ -163,7 +190,49 @@ contact::Frame make_frame(const contact::Robot& robot, const Eigen::Matrix3Xd& n
   return f;
 }
 
+/// The point's robot and frames: random frames of make_robot's robot, or (trajectory) successive
+/// frames of the turning tripod walk from a start time drawn from the point's stream, frames the
+/// spring support cannot balance left out.
+struct Frames {
+  contact::Robot robot;
+  std::vector<contact::Frame> frames;
+};
+
+Frames make_frames(const CostInputs& in) {
+  Frames out;
+  out.frames.reserve(static_cast<std::size_t>(in.frames));
+  if (!in.trajectory) {
+    Eigen::Matrix3Xd nominal;
+    out.robot = make_robot(in, nominal);
+    for (long long i = 0; i < in.frames; ++i) {
+      out.frames.push_back(make_frame(out.robot, nominal, in, i));
+    }
+    return out;
+  }
+  const robots::Walker walker = robots::bigant_tripod(
+      robots::TripodGait{.frequency = kTrajectoryFrequency, .steer = kTrajectorySteer});
+  out.robot = walker.robot;
+  Random rng(static_cast<std::uint64_t>(in.seed), 0);
+  const double t0 = rng.uniform(0.0, walker.period);
+  contact::Frame f(out.robot);
+  for (long long i = 0; static_cast<long long>(out.frames.size()) < in.frames; ++i) {
+    walker.feet(t0 + kFrameStep * static_cast<double>(i), f.q, f.qdot);
+    contact::spring_support(out.robot, f);
+    if (f.support.status == contact::SupportSummary::Status::kBalanced) {
+      out.frames.push_back(f);
+    }
+  }
+  return out;
+}
+
 // --- solving, timing, errors ---------------------------------------------------------------------
+
+/// Along a trajectory, what frame `from` left for the next one (`to`): its body velocity and the
+/// Coulomb solver's static marks (allocation-free: the frames have the same legs).
+void carry(const contact::Frame& from, contact::Frame& to) {
+  to.v_body = from.v_body;
+  std::copy(from.work_idx.begin(), from.work_idx.end(), to.work_idx.begin());
+}
 
 void solve(const contact::Robot& robot, contact::Frame& f, const CostInputs& in) {
   switch (in.method) {
@@ -173,9 +242,13 @@ void solve(const contact::Robot& robot, contact::Frame& f, const CostInputs& in)
     case Method::kEpsilon:
       friction::solve_epsilon(robot, f, in.eps, friction::EpsilonOptions{in.tol});
       break;
-    case Method::kCoulomb:
-      friction::solve_coulomb(robot, f, friction::CoulombOptions{in.tol});
+    case Method::kCoulomb: {
+      friction::CoulombOptions options;
+      options.tol = in.tol;
+      options.warm_start = in.trajectory;
+      friction::solve_coulomb(robot, f, options);
       break;
+    }
     case Method::kSupport:
       contact::spring_support(robot, f);
       break;
@@ -195,12 +268,23 @@ struct Timing {
 };
 
 /// Mean CPU time per frame of the method over all frames, `repeats` times; the frames were solved
-/// once already (warm caches, and the outputs the errors are computed from).
+/// once already (warm caches, and the outputs the errors are computed from). Along a trajectory
+/// each frame is solved after the previous one, from what it left (carry; the first from the
+/// last, once per pass a jump back along the walk).
 Timing time_method(const contact::Robot& robot, std::vector<contact::Frame>& frames,
                    const CostInputs& in) {
   const auto pass = [&] {
-    for (contact::Frame& f : frames) {
-      solve(robot, f, in);
+    if (in.trajectory) {
+      const contact::Frame* prev = &frames.back();
+      for (contact::Frame& f : frames) {
+        carry(*prev, f);
+        solve(robot, f, in);
+        prev = &f;
+      }
+    } else {
+      for (contact::Frame& f : frames) {
+        solve(robot, f, in);
+      }
     }
   };
   // How many passes make one repeat last kMinRepeatSeconds (the clock's resolution and the
@@ -293,6 +377,7 @@ Stats stats(std::vector<double> x) {
 struct CostRow {
   long long id = 0;
   std::string robot;
+  std::string sequence;  ///< "independent" (random frames) or "trajectory" (a walk, warm starts)
   long long N = 0;
   std::string method;
   double eps = kNaN;
@@ -324,6 +409,7 @@ struct CostRow {
     using R = CostRow;
     return {value("id", &R::id),
             value("robot", &R::robot),
+            value("sequence", &R::sequence),
             value("N", &R::N),
             value("method", &R::method),
             value("eps", &R::eps, "m/s"),
@@ -355,13 +441,9 @@ struct CostRow {
 
 Rows<CostRow> run_cost(const Point& point) {
   const CostInputs in = read_cost(point);
-  Eigen::Matrix3Xd nominal;
-  const contact::Robot robot = make_robot(in, nominal);
-  std::vector<contact::Frame> frames;
-  frames.reserve(static_cast<std::size_t>(in.frames));
-  for (long long i = 0; i < in.frames; ++i) {
-    frames.push_back(make_frame(robot, nominal, in, i));
-  }
+  Frames made = make_frames(in);
+  const contact::Robot& robot = made.robot;
+  std::vector<contact::Frame>& frames = made.frames;
 
   // The reference and the method's own answer, frame by frame.
   Errors errors;
@@ -372,7 +454,12 @@ Rows<CostRow> run_cost(const Point& point) {
   long long unconverged = 0;
   long long ref_static = 0;
   contact::Frame ref(robot);
+  const contact::Frame* prev = nullptr;
   for (contact::Frame& f : frames) {
+    if (in.trajectory && prev != nullptr) {
+      carry(*prev, f);
+    }
+    prev = &f;
     long long down = 0;
     for (char c : f.contact) {
       down += c != 0 ? 1 : 0;
@@ -411,6 +498,7 @@ Rows<CostRow> run_cost(const Point& point) {
   Rows<CostRow> out;
   out.rows.push_back({point.id,
                       in.robot,
+                      std::string(in.trajectory ? "trajectory" : "independent"),
                       static_cast<long long>(in.n),
                       std::string(kMethodNames[static_cast<std::size_t>(in.method)]),
                       in.eps,
@@ -447,7 +535,8 @@ std::vector<PointKind> legged_cost_kinds() {
       "legged_cost",
       "§3.6.1: time per frame and error against a 1e-14 Coulomb reference of a friction solver "
       "(or the support search, the connection, the whole model) on random frames of a hexapod or "
-      "a disk robot (one row per point)",
+      "a disk robot, or on successive frames of BigANT's tripod walk with warm starts (one row "
+      "per point)",
       Timed::kYes, [](const Point& p) { (void)read_cost(p); }, run_cost)};
 }
 

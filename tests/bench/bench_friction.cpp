@@ -22,6 +22,7 @@
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
 #include "friction/solvers.hpp"
+#include "robots/robots.hpp"
 #include "terrain/terrain.hpp"
 
 namespace {
@@ -260,6 +261,55 @@ void BM_ModelCoulomb(benchmark::State& state) {
   });
 }
 
+/// Successive frames of a walk (the cost a trajectory pays per frame): BigANT's alternating tripod
+/// (robots::bigant_tripod, its four-bar legs, mass and stiffness) sampled at 100 Hz as the
+/// thesis' F/T and motion data were (§3.5.1.1), steering left (steer 0.3: the inner side's
+/// shorter strokes make the stance feet slip and turn the body) at 0.38 Hz, a frequency whose
+/// cycle is no whole number of frames, so that the 4096 frames (15.6 cycles) do not repeat. The
+/// spring support decides the feet down and their loads frame by frame, so the hand-overs
+/// between the tripods (4–6 feet down) are in the sequence; the rare frame it cannot balance is
+/// left out. The warm row starts each Coulomb solve from the previous frame's answer
+/// (CoulombOptions::warm_start; the working frame keeps v_body from call to call), the cold row
+/// from the viscous-Coulomb start as the independent frames above do: read warm/viscous and
+/// warm/cold off one run.
+Pool make_trajectory_hexapod_pool() {
+  const slipwalk::robots::Walker walker =
+      slipwalk::robots::bigant_tripod({.frequency = 0.38, .steer = 0.3});
+  Pool p(walker.robot);
+  Frame& f = p.frame;
+  for (int i = 0; p.inputs.size() < kInputs; ++i) {
+    walker.feet(0.01 * i, f.q, f.qdot);
+    slipwalk::contact::spring_support(p.robot, f);
+    if (f.support.status == slipwalk::contact::SupportSummary::Status::kBalanced) {
+      p.inputs.push_back(Inputs{f.q, f.qdot, f.contact, f.Fz});
+    }
+  }
+  return p;
+}
+
+void BM_ViscousTrajectoryHexapod(benchmark::State& state) {
+  Pool pool = make_trajectory_hexapod_pool();
+  run(state, pool,
+      [](const Robot& r, Frame& f) { slipwalk::friction::solve_viscous_coulomb(r, f); });
+}
+
+void BM_CoulombTrajectoryHexapod1e9(benchmark::State& state) {
+  Pool pool = make_trajectory_hexapod_pool();
+  slipwalk::friction::CoulombOptions opt;
+  opt.tol = 1e-9;
+  opt.warm_start = true;
+  run(state, pool,
+      [&opt](const Robot& r, Frame& f) { slipwalk::friction::solve_coulomb(r, f, opt); });
+}
+
+void BM_CoulombTrajectoryHexapodCold1e9(benchmark::State& state) {
+  Pool pool = make_trajectory_hexapod_pool();
+  slipwalk::friction::CoulombOptions opt;
+  opt.tol = 1e-9;
+  run(state, pool,
+      [&opt](const Robot& r, Frame& f) { slipwalk::friction::solve_coulomb(r, f, opt); });
+}
+
 #define LEGS Arg(3)->Arg(6)->Arg(12)->Arg(24)->Arg(50)
 BENCHMARK(BM_CopyInputs)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_Viscous)->LEGS->Unit(benchmark::kNanosecond);
@@ -274,6 +324,9 @@ BENCHMARK(BM_CoulombSlopeHexapod1e9)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_SpringSupport)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelViscous)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelCoulomb)->LEGS->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_ViscousTrajectoryHexapod)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_CoulombTrajectoryHexapod1e9)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_CoulombTrajectoryHexapodCold1e9)->Unit(benchmark::kNanosecond);
 
 }  // namespace
 

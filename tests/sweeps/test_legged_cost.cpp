@@ -86,6 +86,9 @@ TEST(LeggedCost, RejectsBadKeysNamingThem) {
   rejects("[params]\nrobot = \"disk\"\nN = 2\n", "N");
   rejects("[params]\nframes = 0\n", "frames");
   rejects("[params]\nlegs = 6\n", "legs");
+  rejects("[params]\nrobot = \"disk\"\nN = 6\nsequence = \"trajectory\"\n", "sequence");
+  rejects("[params]\nsequence = \"walk\"\n", "sequence");
+  rejects("[params]\nsequence = \"trajectory\"\nspeed = 0.2\n", "speed");
 }
 
 // Coulomb to a relative duality gap tol: the error against the 1e-14 reference falls as tol
@@ -179,6 +182,27 @@ TEST(LeggedCost, RowsAreDeterministicApartFromTimings) {
     EXPECT_LE(num(a[i], "time_ns"), num(a[i], "time_ns_p75"));
   }
   EXPECT_TRUE(std::isnan(num(a[1], "err_v_max")));  // support: no friction balance
+}
+
+// Along the walk (sequence = "trajectory") Coulomb warm-starts from the previous frame: its
+// answers are the reference's within the certificate (as independent frames, ‖Δv‖ ≲ √tol), and
+// the frames are the walk's own, 3–6 feet down.
+TEST(LeggedCost, TrajectoryFramesAreSolvedInOrderWithinTheCertificate) {
+  const std::vector<Cells> rows =
+      run("[params]\nsequence = \"trajectory\"\nframes = 60\nrepeats = 1\nseed = 4\n"
+          "[[block]]\nparams.method = \"coulomb\"\nparams.tol = 1e-9\n"
+          "[[block]]\nparams.method = \"viscous\"\n");
+  ASSERT_EQ(rows.size(), 2u);
+  for (const Cells& r : rows) {
+    EXPECT_EQ(std::get<std::string>(r[col("sequence")]), "trajectory");
+    EXPECT_EQ(num(r, "unconverged"), 0.0);
+    EXPECT_EQ(num(r, "ref_unconverged"), 0.0);
+    EXPECT_GE(num(r, "contacts_min"), 3.0);
+    EXPECT_GT(num(r, "contacts_max"), 3.0);  // the hand-overs between the tripods
+  }
+  EXPECT_GE(num(rows[0], "error_frames"), 50.0);
+  EXPECT_LE(num(rows[0], "err_v_max"), 10.0 * std::sqrt(1e-9));
+  EXPECT_GT(num(rows[1], "err_v_median"), 1e-3);  // viscous-Coulomb: another law
 }
 
 }  // namespace
