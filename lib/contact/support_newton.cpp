@@ -96,10 +96,15 @@ struct Cell {
   double near = 0.0;  // feet within kNearPlane × the rounding error of their contact plane
 };
 
-// The sums of one pass, per lane.
+// The sums of one pass, per lane. Ten accumulators, not eleven: with the temporaries of a step
+// they fit the sixteen vector registers of x86-64, where an eleventh was kept in memory and put
+// a store and a load on the loop's critical path. So the contact changes and the feet near their
+// plane share one accumulator, counted in units of 1 and kNearUnit (both counts are integers
+// below limits::kMaxLegs < kNearUnit, so the sum and its split are exact in doubles).
+constexpr double kNearUnit = 1048576.0;  // 2^20
 struct Sums {
   using V = Lanes<4>::V;
-  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes{}, near{};
+  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes_near{};
 };
 
 // Feet j … j + 3 of a pass at v (see pass()).
@@ -122,9 +127,9 @@ template <bool kAll>
     w = L::select(touching, K);
     on = L::select(touching, L::splat(1.0));
     const V d = on - L::load(R.on + j);
-    s.changes += d * d;
-    // Feet within `margin` of their plane, either side (h² ≤ margin², no abs needed).
-    s.near += L::select(h * h <= L::splat(margin * margin), L::splat(1.0));
+    // Contact changes, and the feet within `margin` of their plane, either side (h² ≤ margin²,
+    // no abs needed).
+    s.changes_near += d * d + L::select(h * h <= L::splat(margin * margin), L::splat(kNearUnit));
   }
   L::store(R.on + j, on);
   const V wy = w * y;
@@ -161,8 +166,9 @@ template <bool kAll = false>
       syx, sum(&Sums::xx), sx,     //
       sy, sx, sum(&Sums::k);
   c.g << sum(&Sums::gy), sum(&Sums::gx), sum(&Sums::gz) + Mg;
-  c.changes = sum(&Sums::changes);
-  c.near = sum(&Sums::near);
+  const double changes_near = sum(&Sums::changes_near);
+  c.near = std::floor(changes_near * (1.0 / kNearUnit));  // exact: a power of two
+  c.changes = changes_near - c.near * kNearUnit;
   return c;
 }
 
@@ -333,11 +339,15 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
       frame.alpha = v(0);
       frame.beta = v(1);
       frame.z = v(2);
+      // (Plain pointers: a store through char* may alias anything, and through the frame's
+      // members it would reload every pointer at every foot.)
+      char* const contact = frame.contact.data();
+      double* const Fz = frame.Fz.data();
       for (int j = 0; j < n; ++j) {
         const bool on = row[kOn][j] != 0.0;
         const double h = row[kY][j] * v(0) + row[kMinusX][j] * v(1) + (row[kQz][j] + v(2));
-        frame.contact[static_cast<std::size_t>(j)] = on ? 1 : 0;
-        frame.Fz(j) = on ? -robot.K(j) * h : 0.0;
+        contact[j] = on ? 1 : 0;
+        Fz[j] = on ? -row[kK][j] * h : 0.0;
       }
       summary.status = SupportSummary::Status::kBalanced;
       summary.route = SupportSummary::Route::kNewton;

@@ -92,6 +92,7 @@ Contacts viscous_balance_general(const contact::Robot& robot, contact::Frame& fr
 }
 
 using Row = contact::ViscousScratch::Row;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -106,26 +107,38 @@ bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Ei
       frame.viscous.rows.row(Row::kQdx).data(), frame.viscous.rows.row(Row::kQdy).data(),
       frame.viscous.rows.row(Row::kC).data(),   frame.viscous.rows.row(Row::kFx).data(),
       frame.viscous.rows.row(Row::kFy).data()};
+  // G = I for every foot: no anisotropy anywhere (checked on the robot, so that the pass below
+  // carries no term for it).
+  if (!(robot.w.array() == 0.0).all()) {
+    return false;
+  }
   // One scalar pass: the feet into the rows, for the force pass after the solve (loaded four at a
   // time there, long after these stores: loading them here would stall on store forwarding), and
   // the sums of M and b with G = I (seven, where the general loop needs nine and more products).
-  double aniso = 0.0;  // Σ c (|w₀| + |w₁|): positive iff some foot with friction has w ≠ 0
+  // Plain pointers, and few enough accumulators to stay in registers.
+  const double* const q = frame.q.data();
+  const double* const qd = frame.qdot.data();
+  const double* const Fz = frame.Fz.data();
+  const double* const mu = robot.mu.data();
+  const char* const contact = frame.contact.data();
+  double* const weights = frame.work_n.data();
   double L2 = 0.0;
   int active = 0;
   double sc = 0.0, scx = 0.0, scy = 0.0, scrr = 0.0, scdx = 0.0, scdy = 0.0, scm = 0.0;
   for (int k = 0; k < n; ++k) {
-    const double c = friction_weight(robot, frame, k);
-    const double x = frame.q(0, k);
-    const double y = frame.q(1, k);
-    const double dx = frame.qdot(0, k);
-    const double dy = frame.qdot(1, k);
-    frame.work_n(k) = c;
+    // friction_weight(): c = μ F_z for a foot in contact with finite positive c, else 0.
+    const double cm = mu[k] * Fz[k];
+    const double c = contact[k] != 0 && cm > 0.0 && cm < kInfinity ? cm : 0.0;
+    const double x = q[3 * k];
+    const double y = q[3 * k + 1];
+    const double dx = qd[3 * k];
+    const double dy = qd[3 * k + 1];
+    weights[k] = c;
     r[Row::kC][k] = c;
     r[Row::kQx][k] = x;
     r[Row::kQy][k] = y;
     r[Row::kQdx][k] = dx;
     r[Row::kQdy][k] = dy;
-    aniso += c * (std::abs(robot.w(0, k)) + std::abs(robot.w(1, k)));
     const double cx = c * x;
     const double cy = c * y;
     active += c > 0.0 ? 1 : 0;
@@ -137,9 +150,6 @@ bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Ei
     scdx += c * dx;
     scdy += c * dy;
     scm += cx * dy - cy * dx;  // (S q)ᵀ q̇ c = (−q_y q̇_x + q_x q̇_y) c
-  }
-  if (aniso > 0.0) {
-    return false;
   }
   out.active = active;
   out.c_sum = sc;

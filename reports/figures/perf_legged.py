@@ -59,18 +59,17 @@ FLOPS = {
     # support_by_newton's scalar loops: the rows (q_x² + q_y² for the lever scale: 3) and the
     # loads once certified (h: 5, F_z = −K h: 1): 9.
     "support_rows_loads": {"flops": 9, "per": "foot", "width": "scalar"},
-    # lib/friction/balance.cpp viscous_balance, per foot with friction: c = μ F_z (1), c_sum += c
-    # (1), L² = q_x² + q_y² (3), g00 and g11 = c (1 + w²) (3 each), g01 = c w0 w1 (2), the levers
-    # gs0, gs1 = −g q_y + g q_x (3 each), G q̇ (3 each), m00, m01, m11, m02, m12 += (5), m22 +=
-    # −q_y gs0 + q_x gs1 (4), b0, b1 += (2), b2 += −q_y gq0 + q_x gq1 (4): 40. An isotropic
-    # robot (w = 0) runs the same code; a kernel for G = I alone would need 20 (c, c_sum, L², c q_y,
-    # c q_x, c q̇ twice, m00, m02, m12 +=, m22 += c L² (2), b0, b1 += (2), b2 += (4)).
-    "system_assembly": {"flops": 40, "per": "contact", "width": "scalar"},
-    # lib/friction/viscous_coulomb.cpp finish(), the forces loop over every foot: u0, u1 = v ∓ ω q
-    # + q̇ (3 each), w·u (3), F0, F1 = −c (u + w (w·u)) (3 each), fx, fy += (2), mz += q_x F1 −
-    # q_y F0 (4), dissipation −= F·u (4), scale += c (1 + w0² + w1²) (|q̇0| + |q̇1| + |u0| +
-    # |u1|) (10): 35 (23 for G = I alone: F = −c u and the scale's 1 + w² gone).
-    "viscous_forces": {"flops": 35, "per": "foot", "width": "scalar"},
+    # lib/friction/balance.cpp viscous_balance_rows (isotropic robots, G = I), every foot,
+    # branch-free: c = μ F_z (1), c q_x, c q_y (2), L² = q_x² + q_y² (3), Σc, Σc q_x, Σc q_y += (3),
+    # Σ c (q_x² + q_y²) += c q_x q_x + c q_y q_y (4), Σ c q̇_x, Σ c q̇_y += (2 each: 4), Σ c (q_x q̇_y −
+    # q_y q̇_x) += (4): 21. (The general loop for anisotropic feet, viscous_balance_general, needs
+    # 40: c (1 + w²) and c w0 w1 per foot and the products with them.)
+    "system_assembly": {"flops": 21, "per": "foot", "width": "scalar"},
+    # balance.cpp viscous_forces_rows (isotropic), every foot, four at a time: u0 = v0 − ω q_y +
+    # q̇_x and u1 = v1 + ω q_x + q̇_y (3 each), F0, F1 = −c u (1 each), fx, fy += (2), mz += q_x F1
+    # − q_y F0 (4), dissipation −= F·u (4), scale += c (|q̇0| + |q̇1| + |u0| + |u1|) (5): 23.
+    # (viscous_forces, the general loop for anisotropic feet: 35, with G u = u + w (w·u).)
+    "viscous_forces": {"flops": 23, "per": "foot", "width": "avx2"},
     # lib/connection/local_connection.cpp columns<false> (isotropic), every foot: s0 = −q_y g00 +
     # q_x g01 and s1 = −q_y g01 + q_x g11 (3 each: g01 = 0.0 stays, since q_x · 0 may be −0 or
     # NaN), six entries of three products and two adds (5 each): 36 (20 without the zero terms).

@@ -402,6 +402,7 @@ struct CostRow {
   long long ref_unconverged = 0;
   double ref_static_mean = kNaN;  ///< static feet per frame in the reference
   double iterations_mean = 0.0;
+  double newton_steps_mean = kNaN;  ///< support, model: the support's Newton steps per frame
   long long unconverged = 0;
   std::string message;
 
@@ -434,6 +435,7 @@ struct CostRow {
             value("ref_unconverged", &R::ref_unconverged),
             value("ref_static_mean", &R::ref_static_mean),
             value("iterations_mean", &R::iterations_mean),
+            value("newton_steps_mean", &R::newton_steps_mean),
             value("unconverged", &R::unconverged),
             value("message", &R::message)};
   }
@@ -451,6 +453,7 @@ Rows<CostRow> run_cost(const Point& point) {
   long long contacts_min = in.n;
   long long contacts_max = 0;
   long long iterations = 0;
+  long long newton_steps = 0;
   long long unconverged = 0;
   long long ref_static = 0;
   contact::Frame ref(robot);
@@ -468,6 +471,7 @@ Rows<CostRow> run_cost(const Point& point) {
     contacts_min = std::min(contacts_min, down);
     contacts_max = std::max(contacts_max, down);
     solve(robot, f, in);
+    newton_steps += f.support.newton_steps;
     if (in.method == Method::kSupport) {
       iterations += f.support.iterations;
       unconverged += f.support.status == contact::SupportSummary::Status::kIterationLimit ? 1 : 0;
@@ -523,6 +527,9 @@ Rows<CostRow> run_cost(const Point& point) {
                       errors.ref_unconverged,
                       friction ? static_cast<double>(ref_static) / nf : kNaN,
                       static_cast<double>(iterations) / nf,
+                      in.method == Method::kSupport || in.method == Method::kModel
+                          ? static_cast<double>(newton_steps) / nf
+                          : kNaN,
                       unconverged,
                       message});
   return out;
