@@ -162,13 +162,18 @@ class PerfLegged(unittest.TestCase):
         make(self.data)
         _, v, _ = run(self.data, self.out)
         flops = self.module.FLOPS
-        # viscous-Coulomb: the assembly over the feet down plus the forces over every foot, all
-        # scalar; one more leg costs b = 3 ns = 6 cycles at 2 GHz
-        viscous = flops["system_assembly"]["flops"] * DOWN + flops["viscous_forces"]["flops"]
+        # viscous-Coulomb: the assembly (scalar) and the forces (four lanes) over every foot; one
+        # more leg costs b = 3 ns = 6 cycles at 2 GHz
+        assembly = flops["system_assembly"]["flops"] * (DOWN if flops["system_assembly"]["per"]
+                                                        == "contact" else 1.0)
+        viscous = assembly + flops["viscous_forces"]["flops"]
+        peak = {"scalar": 4.0, "sse2": 8.0, "avx2": 16.0}
+        at_peak = (assembly / peak[flops["system_assembly"]["width"]]
+                   + flops["viscous_forces"]["flops"] / peak[flops["viscous_forces"]["width"]])
         self.assertAlmostEqual(v["limit_viscous_flops_per_leg"], viscous)
         self.assertAlmostEqual(v["limit_viscous_cycles_per_leg"], 6.0)
         self.assertAlmostEqual(v["limit_viscous_flops_per_cycle"], viscous / 6.0)
-        self.assertAlmostEqual(v["limit_viscous_fraction_of_peak"], viscous / 4.0 / 6.0)
+        self.assertAlmostEqual(v["limit_viscous_fraction_of_peak"], at_peak / 6.0)
         self.assertAlmostEqual(v["limit_viscous_fraction_of_machine_peak"], viscous / 16.0 / 6.0)
         # Coulomb: (steps + 1) passes and the finish, SSE2; b = 20 ns = 40 cycles
         coulomb = ((COULOMB_STEPS + 1) * flops["coulomb_pass"]["flops"]
@@ -177,12 +182,14 @@ class PerfLegged(unittest.TestCase):
         self.assertAlmostEqual(v["limit_coulomb_1e-09_fraction_of_peak"], coulomb / 8.0 / 40.0)
         # the whole model: each kernel at its own width's peak
         steps = self.module.SUPPORT_STEPS_ASSUMED
-        at_peak = ((flops["support_start_pass"]["flops"]
-                    + steps * flops["support_newton_pass"]["flops"]) / 16.0
-                   + (flops["support_rows_loads"]["flops"]
-                      + flops["system_assembly"]["flops"] * DOWN
-                      + flops["connection_columns"]["flops"]
-                      + flops["viscous_forces"]["flops"]) / 4.0)
+
+        def cycles(kernel: str, count: float = 1.0) -> float:
+            k = flops[kernel]
+            return count * k["flops"] * (DOWN if k["per"] == "contact" else 1.0) / peak[k["width"]]
+
+        at_peak = (cycles("support_start_pass") + cycles("support_newton_pass", steps)
+                   + cycles("support_rows_loads") + cycles("system_assembly")
+                   + cycles("connection_columns") + cycles("viscous_forces"))
         self.assertAlmostEqual(v["limit_model_peak_cycles_per_leg"], at_peak)
         self.assertAlmostEqual(v["limit_model_fraction_of_peak"], at_peak / 20.0)
         self.assertAlmostEqual(v["limit_model_per_leg_ns"], at_peak / 2.0)
