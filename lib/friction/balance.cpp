@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -129,10 +130,11 @@ bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Ei
     // friction_weight(): c = μ F_z for a foot in contact with finite positive c, else 0.
     const double cm = mu[k] * Fz[k];
     const double c = contact[k] != 0 && cm > 0.0 && cm < kInfinity ? cm : 0.0;
-    const double x = q[3 * k];
-    const double y = q[3 * k + 1];
-    const double dx = qd[3 * k];
-    const double dy = qd[3 * k + 1];
+    const std::ptrdiff_t at = 3 * static_cast<std::ptrdiff_t>(k);  // column k of a 3 x N matrix
+    const double x = q[at];
+    const double y = q[at + 1];
+    const double dx = qd[at];
+    const double dy = qd[at + 1];
     weights[k] = c;
     r[Row::kC][k] = c;
     r[Row::kQx][k] = x;
