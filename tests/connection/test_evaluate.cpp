@@ -10,6 +10,7 @@
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
 #include "friction/solvers.hpp"
+#include "support/count_allocations.hpp"
 
 namespace slipwalk::connection {
 namespace {
@@ -88,6 +89,33 @@ TEST(ConnectionEvaluate, SymmetricRobotPushingBackwardsMovesForward) {
     EXPECT_NEAR(f.v_body(0), 0.1, 1e-14);
     EXPECT_NEAR(f.v_body(1), 0.0, 1e-14);
     EXPECT_NEAR(f.v_body(2), 0.0, 1e-13);
+  }
+}
+
+// No allocation per frame (the model's contract, contact/robot.hpp): once a Frame exists, every
+// evaluation of any odd or even count of legs, with feet lifting and landing between frames, runs
+// on the frame's own scratch — the support's rows, the viscous rows, the Coulomb rows.
+TEST(ConnectionEvaluate, EvaluatesFrameAfterFrameWithoutAllocating) {
+  std::mt19937 rng(31);
+  for (const int n : {3, 5, 6, 8, 13, 50}) {
+    const contact::Robot robot = contact::uniform_robot(n, 1000.0, 0.8, 10.0);
+    std::vector<contact::Frame> inputs;
+    for (int frame = 0; frame < 200; ++frame) {
+      inputs.push_back(hexapod_frame(robot, rng));
+    }
+    contact::Frame f = inputs.front();
+    evaluate(robot, f, FrictionLaw::kViscousCoulomb);  // a first call may size messages
+    evaluate(robot, f, FrictionLaw::kCoulomb);
+    long long balanced = 0;
+    const long long before = slipwalk::testing::allocation_count();
+    for (std::size_t frame = 0; frame < inputs.size(); ++frame) {
+      f.q = inputs[frame].q;  // same sizes: Eigen assigns in place
+      f.qdot = inputs[frame].qdot;
+      evaluate(robot, f, frame % 2 == 0 ? FrictionLaw::kViscousCoulomb : FrictionLaw::kCoulomb);
+      balanced += f.support.status == contact::SupportSummary::Status::kBalanced ? 1 : 0;
+    }
+    EXPECT_EQ(slipwalk::testing::allocation_count(), before) << n << " legs";
+    EXPECT_GT(balanced, 100) << n << " legs";
   }
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <random>
 
 #include "contact/robot.hpp"
@@ -120,6 +121,40 @@ TEST(ViscousSystem, ContactsAtOnePointGiveThePseudoInverse) {
   solve_viscous_coulomb(c.robot, c.frame, system);
   EXPECT_FALSE(c.frame.friction.unique);
   EXPECT_TRUE(c.frame.v_body.allFinite());
+}
+
+// The isotropic kernels (balance.cpp: the feet as rows, the forces four at a time) against the
+// general loop: a robot whose only anisotropic foot is in the air takes the general loop, and its
+// answer is the isotropic robot's, to rounding (the two sum in different orders).
+TEST(ViscousSystem, TheIsotropicKernelsAgreeWithTheGeneralLoop) {
+  std::mt19937 rng(41);
+  for (const int n : {2, 3, 4, 5, 7, 8, 13, 50}) {
+    Case iso = random_case(n, false, rng);
+    Case general = iso;
+    general.robot.w.col(0) << 0.5, -0.3;  // foot 0 is in the air (random_case)
+    solve_viscous_coulomb(iso.robot, iso.frame);
+    solve_viscous_coulomb(general.robot, general.frame);
+    const double V = iso.frame.v_body.norm() + 1e-300;
+    EXPECT_LE((iso.frame.v_body - general.frame.v_body).norm(), 1e-13 * V) << n << " legs";
+    const double F = iso.frame.Fxy.cwiseAbs().maxCoeff() + 1e-300;
+    EXPECT_LE((iso.frame.Fxy - general.frame.Fxy).cwiseAbs().maxCoeff(), 1e-13 * F) << n;
+    EXPECT_NEAR(iso.frame.friction.dissipation, general.frame.friction.dissipation,
+                1e-13 * std::abs(general.frame.friction.dissipation));
+    EXPECT_LE(iso.frame.friction.residual, 1e-14) << n << " legs";
+    EXPECT_EQ(iso.frame.friction.unique, general.frame.friction.unique);
+    // Both balance: Σ F = 0 and Σ q × F = 0 to rounding (the forces' own check).
+    double fx = 0.0, fy = 0.0, mz = 0.0, scale = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector2d Fk = iso.frame.Fxy.col(k);
+      fx += Fk(0);
+      fy += Fk(1);
+      mz += iso.frame.q(0, k) * Fk(1) - iso.frame.q(1, k) * Fk(0);
+      scale += Fk.norm();
+    }
+    if (n >= 3) {
+      EXPECT_LE(std::abs(fx) + std::abs(fy) + std::abs(mz), 1e-13 * scale) << n << " legs";
+    }
+  }
 }
 
 }  // namespace
