@@ -62,7 +62,7 @@ TEST(ConnectionEvaluate, IsSpringSupportThenTheFrictionLaw) {
         EXPECT_EQ((f.A - g.A).norm(), 0.0);
         for (int k = 0; k < robot.legs(); ++k) {
           if (f.contact[static_cast<std::size_t>(k)] == 0) {
-            EXPECT_EQ(f.A.middleCols<2>(2 * k).norm(), 0.0);
+            EXPECT_EQ(f.A.middleCols<2>(2 * static_cast<Eigen::Index>(k)).norm(), 0.0);
             EXPECT_EQ(f.Fxy.col(k).norm(), 0.0);
           }
         }
@@ -100,6 +100,7 @@ TEST(ConnectionEvaluate, EvaluatesFrameAfterFrameWithoutAllocating) {
   for (const int n : {3, 5, 6, 8, 13, 50}) {
     const contact::Robot robot = contact::uniform_robot(n, 1000.0, 0.8, 10.0);
     std::vector<contact::Frame> inputs;
+    inputs.reserve(200);
     for (int frame = 0; frame < 200; ++frame) {
       inputs.push_back(hexapod_frame(robot, rng));
     }
