@@ -3,6 +3,8 @@
 // feet: the system (friction::ViscousSystem) and the columns of A.
 #include "connection/local_connection.hpp"
 
+#include <cstddef>
+
 namespace slipwalk::connection {
 
 namespace {
@@ -43,13 +45,42 @@ void columns(const contact::Robot& robot, contact::Frame& frame, const Eigen::Ma
   }
 }
 
+// The isotropic columns from the rows the viscous assembly left (ViscousSystem::rows()): with
+// G = I, J_kᵀ c_k = c_k [I; (S q_k)ᵀ], so the columns are −P (c, 0, −c q_y) and −P (0, c, c q_x):
+// four products fewer per foot than columns<false>, and contiguous loads. The six stores per foot
+// remain (A's layout: foot k's six entries side by side).
+void columns_from_rows(contact::Frame& frame, const Eigen::Matrix3d& P) {
+  using Row = contact::ViscousScratch::Row;
+  const double p00 = P(0, 0), p01 = P(0, 1), p02 = P(0, 2);
+  const double p10 = P(1, 0), p11 = P(1, 1), p12 = P(1, 2);
+  const double p20 = P(2, 0), p21 = P(2, 1), p22 = P(2, 2);
+  const double* const cs = frame.viscous.rows.row(Row::kC).data();
+  const double* const xs = frame.viscous.rows.row(Row::kQx).data();
+  const double* const ys = frame.viscous.rows.row(Row::kQy).data();
+  double* const a = frame.A.data();
+  for (int k = 0; k < frame.legs(); ++k) {
+    const double c = cs[k];
+    const double s0 = -ys[k] * c;  // c (S q)_x
+    const double s1 = xs[k] * c;   // c (S q)_y
+    double* const col = a + 6 * static_cast<std::ptrdiff_t>(k);
+    col[0] = -(p00 * c + p02 * s0);
+    col[1] = -(p10 * c + p12 * s0);
+    col[2] = -(p20 * c + p22 * s0);
+    col[3] = -(p01 * c + p02 * s1);
+    col[4] = -(p11 * c + p12 * s1);
+    col[5] = -(p21 * c + p22 * s1);
+  }
+}
+
 }  // namespace
 
 void local_connection(const contact::Robot& robot, contact::Frame& frame,
                       const friction::ViscousSystem& system) {
   // With the unscaled lever S q_k in J_k = [I | S q_k], A_k = −c_k M⁺ J_kᵀ G_k.
   const Eigen::Matrix3d P = system.inverse();
-  if (system.anisotropic()) {
+  if (system.rows()) {
+    columns_from_rows(frame, P);
+  } else if (system.anisotropic()) {
     columns<true>(robot, frame, P, system.weights());
   } else {
     columns<false>(robot, frame, P, system.weights());

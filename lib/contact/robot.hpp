@@ -184,8 +184,8 @@ struct CoulombScratch {
 
 /// Scratch of the viscous balance (friction/viscous_system.hpp, thesis eq. 3.20): the feet's
 /// planar inputs and weights as rows, written by the assembly pass so that the passes after it
-/// (the forces, the columns of A) read them four feet at a time. Each row (1 x N̄); the padding
-/// foot has a zero column (c = 0: it adds exact zeros to every sum).
+/// (the forces, the columns of A) read them contiguously, the forces four feet at a time. Each row
+/// (1 x N̄); the padding foot has a zero column (c = 0: it adds exact zeros to every sum).
 struct ViscousScratch {
   explicit ViscousScratch(int legs);
   enum Row : int {
@@ -194,8 +194,6 @@ struct ViscousScratch {
     kQdx,     ///< q̇_x,k, m/s
     kQdy,     ///< q̇_y,k, m/s
     kC,       ///< c_k = μ_k F_z,k, N (0 for a foot in the air or without friction)
-    kFx,      ///< F_x,k, N: the viscous-Coulomb force, before it is written to Frame::Fxy
-    kFy,      ///< F_y,k, N
     kRows
   };
   FootRows<kRows> rows;

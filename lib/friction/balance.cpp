@@ -103,11 +103,10 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
                           Eigen::Vector3d& b, Contacts& out) {
   const int n = frame.legs();
-  double* const r[Row::kRows] = {
-      frame.viscous.rows.row(Row::kQx).data(),  frame.viscous.rows.row(Row::kQy).data(),
-      frame.viscous.rows.row(Row::kQdx).data(), frame.viscous.rows.row(Row::kQdy).data(),
-      frame.viscous.rows.row(Row::kC).data(),   frame.viscous.rows.row(Row::kFx).data(),
-      frame.viscous.rows.row(Row::kFy).data()};
+  auto& rows = frame.viscous.rows;
+  double* const r[Row::kRows] = {rows.row(Row::kQx).data(), rows.row(Row::kQy).data(),
+                                 rows.row(Row::kQdx).data(), rows.row(Row::kQdy).data(),
+                                 rows.row(Row::kC).data()};
   // G = I for every foot: no anisotropy anywhere (checked on the robot, so that the pass below
   // carries no term for it).
   if (!(robot.w.array() == 0.0).all()) {
@@ -173,14 +172,16 @@ struct ForceLanes {
   V fx{}, fy{}, mz{}, dissipation{}, scale{};
 };
 
-template <int W>
-[[gnu::always_inline]] inline void add_forces(double* const* r, Eigen::Index j, double v0,
-                                              double v1, double om, ForceLanes<W>& s) {
-  using L = core::Lanes<W>;
-  using V = typename L::V;
+// Feet j … j + 3: their forces F = −c u written to Fxy (2 x N, foot by foot: interleaved in
+// registers, two stores for four feet; lane by lane for the last, padded group) and summed.
+[[gnu::always_inline]] inline void add_forces(const double* const* r, Eigen::Index j, int n,
+                                              double* Fxy, double v0, double v1, double om,
+                                              ForceLanes<4>& s) {
+  using L = core::Lanes<4>;
+  using V = L::V;
   const auto abs = [](V a) {
-    return std::bit_cast<V>(std::bit_cast<typename L::M>(a) &
-                            (typename L::M{} + std::numeric_limits<std::int64_t>::max()));
+    return std::bit_cast<V>(std::bit_cast<L::M>(a) &
+                            (L::M{} + std::numeric_limits<std::int64_t>::max()));
   };
   const V c = L::load(r[Row::kC] + j);
   const V x = L::load(r[Row::kQx] + j);
@@ -189,10 +190,17 @@ template <int W>
   const V dy = L::load(r[Row::kQdy] + j);
   const V u0 = L::splat(v0) - L::splat(om) * y + dx;
   const V u1 = L::splat(v1) + L::splat(om) * x + dy;
-  const V F0 = -c * u0;  // zero for a foot without friction (c = 0) and the padding foot
+  const V F0 = -c * u0;  // zero for a foot without friction (c = 0) and the padding feet
   const V F1 = -c * u1;
-  L::store(r[Row::kFx] + j, F0);
-  L::store(r[Row::kFy] + j, F1);
+  if (j + 4 <= n) {
+    L::store(Fxy + 2 * j, __builtin_shufflevector(F0, F1, 0, 4, 1, 5));
+    L::store(Fxy + 2 * j + 4, __builtin_shufflevector(F0, F1, 2, 6, 3, 7));
+  } else {
+    for (Eigen::Index i = 0; j + i < n; ++i) {
+      Fxy[2 * (j + i)] = F0[i];
+      Fxy[2 * (j + i) + 1] = F1[i];
+    }
+  }
   s.fx += F0;
   s.fy += F1;
   s.mz += x * F1 - y * F0;
@@ -205,17 +213,13 @@ template <int W>
 SLIPWALK_CLONES ForceSums viscous_forces_rows(contact::Frame& frame, double v0, double v1,
                                               double om) {
   auto& rows = frame.viscous.rows;
-  double* const r[Row::kRows] = {rows.row(Row::kQx).data(),  rows.row(Row::kQy).data(),
-                                 rows.row(Row::kQdx).data(), rows.row(Row::kQdy).data(),
-                                 rows.row(Row::kC).data(),   rows.row(Row::kFx).data(),
-                                 rows.row(Row::kFy).data()};
+  const double* const r[Row::kRows] = {rows.row(Row::kQx).data(), rows.row(Row::kQy).data(),
+                                       rows.row(Row::kQdx).data(), rows.row(Row::kQdy).data(),
+                                       rows.row(Row::kC).data()};
+  double* const Fxy = frame.Fxy.data();
   ForceLanes<4> s;
   for (Eigen::Index j = 0; j < rows.cols(); j += 4) {  // a multiple of four
-    add_forces<4>(r, j, v0, v1, om, s);
-  }
-  for (int k = 0; k < frame.legs(); ++k) {  // Fxy is 2 x N, foot by foot
-    frame.Fxy(0, k) = r[Row::kFx][k];
-    frame.Fxy(1, k) = r[Row::kFy][k];
+    add_forces(r, j, frame.legs(), Fxy, v0, v1, om, s);
   }
   const auto sum = [&s](auto ForceLanes<4>::*m) { return core::Lanes<4>::sum(s.*m); };
   return {sum(&ForceLanes<4>::fx), sum(&ForceLanes<4>::fy), sum(&ForceLanes<4>::mz),

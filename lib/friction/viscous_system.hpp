@@ -30,6 +30,9 @@ class ViscousSystem {
   /// Whether some foot with friction has an anisotropy w_k ≠ 0 (eq. 3.19); false: G_k = I for
   /// every foot, and a pass over the feet can skip the anisotropy terms.
   [[nodiscard]] bool anisotropic() const { return contacts_.anisotropic; }
+  /// Whether the robot is isotropic and the assembly left the feet as rows in frame.viscous
+  /// (contact/robot.hpp: q_x, q_y, q̇_x, q̇_y, c_k), which a pass over the feet may then read.
+  [[nodiscard]] bool rows() const { return contacts_.rows; }
   /// (3 x 3) M⁺ in body coordinates x = (v_x, v_y, ω), so that x = −M⁺ b. The least-norm inverse
   /// is taken in the scaled coordinates of balance.hpp: M⁺ = D M̃⁺ D, D = diag(1, 1, 1/L).
   [[nodiscard]] Eigen::Matrix3d inverse() const;
