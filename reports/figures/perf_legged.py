@@ -70,10 +70,10 @@ FLOPS = {
     # − q_y F0 (4), dissipation −= F·u (4), scale += c (|q̇0| + |q̇1| + |u0| + |u1|) (5): 23.
     # (viscous_forces, the general loop for anisotropic feet: 35, with G u = u + w (w·u).)
     "viscous_forces": {"flops": 23, "per": "foot", "width": "avx2"},
-    # lib/connection/local_connection.cpp columns<false> (isotropic), every foot: s0 = −q_y g00 +
-    # q_x g01 and s1 = −q_y g01 + q_x g11 (3 each: g01 = 0.0 stays, since q_x · 0 may be −0 or
-    # NaN), six entries of three products and two adds (5 each): 36 (20 without the zero terms).
-    "connection_columns": {"flops": 36, "per": "foot", "width": "scalar"},
+    # lib/connection/local_connection.cpp columns_from_rows (isotropic robots, from the viscous
+    # rows), every foot: c (S q) = (−q_y c, q_x c) (2), six entries −(p c + p' s) (3 each: 18): 20.
+    # (columns<kAniso>, for anisotropic feet: 36, with c G and (S q)ᵀ c G per foot.)
+    "connection_columns": {"flops": 20, "per": "foot", "width": "scalar"},
     # lib/friction/coulomb_solver.hpp assemble<kAll, false> (coulomb.cpp's pass: one per Newton
     # step plus one), every foot: r0, r1 (six multiply-adds: 12), r·r (3), ρ = √(r·r + δ² + 1 − m)
     # (3 and a root: 4), ir = m / ρ (a divide: 1), f += m ρ (2), the r2_min term (2), g0, g1, g2
