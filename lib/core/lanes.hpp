@@ -29,18 +29,13 @@ namespace slipwalk::core {
 template <int W>
 struct VectorTypes;
 template <>
-struct VectorTypes<2> {
-  using V = double __attribute__((vector_size(16)));
-  using M = std::int64_t __attribute__((vector_size(16)));
-};
-template <>
 struct VectorTypes<4> {
   using V = double __attribute__((vector_size(32)));
   using M = std::int64_t __attribute__((vector_size(32)));
 };
 
-/// W doubles side by side (W = 2 or 4): unaligned loads and stores, a broadcast, a masked select
-/// and the sum of the lanes, left to right.
+/// W doubles side by side (W = 4; another width is one more VectorTypes entry): unaligned loads and
+/// stores, a broadcast, a masked select and the sum of the lanes, left to right.
 template <int W>
 struct Lanes {
   using V = typename VectorTypes<W>::V;

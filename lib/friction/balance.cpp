@@ -28,8 +28,7 @@ Contacts prepare(const contact::Robot& robot, contact::Frame& frame) {
       out.anisotropic = true;
     }
   }
-  out.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
-  out.inv_L = 1.0 / out.L;
+  out.set_lever_scale(L2);
   if (out.anisotropic) {
     for (int k = 0; k < frame.legs(); ++k) {
       frame.work_n(k) = 1.0 / (1.0 + std::sqrt(1.0 + robot.w.col(k).squaredNorm()));
@@ -84,8 +83,7 @@ Contacts viscous_balance_general(const contact::Robot& robot, contact::Frame& fr
   out.active = active;
   out.c_sum = c_sum;
   out.anisotropic = aniso > 0.0;
-  out.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
-  out.inv_L = 1.0 / out.L;
+  out.set_lever_scale(L2);
   const double il = out.inv_L;
   M << m00, m01, m02 * il, m01, m11, m12 * il, m02 * il, m12 * il, m22 * il * il;
   b << b0, b1, b2 * il;
@@ -156,8 +154,7 @@ bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Ei
   out.c_sum = sc;
   out.anisotropic = false;
   out.rows = true;
-  out.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
-  out.inv_L = 1.0 / out.L;
+  out.set_lever_scale(L2);
   const double il = out.inv_L;
   M << sc, 0.0, -scy * il, 0.0, sc, scx * il, -scy * il, scx * il, scrr * il * il;
   b << scdx, scdy, scm * il;
@@ -166,9 +163,8 @@ bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Ei
 
 namespace {
 
-template <int W>
 struct ForceLanes {
-  using V = typename core::Lanes<W>::V;
+  using V = core::Lanes<4>::V;
   V fx{}, fy{}, mz{}, dissipation{}, scale{};
 };
 
@@ -176,7 +172,7 @@ struct ForceLanes {
 // registers, two stores for four feet; lane by lane for the last, padded group) and summed.
 [[gnu::always_inline]] inline void add_forces(const double* const* r, Eigen::Index j, int n,
                                               double* Fxy, double v0, double v1, double om,
-                                              ForceLanes<4>& s) {
+                                              ForceLanes& s) {
   using L = core::Lanes<4>;
   using V = L::V;
   const auto abs = [](V a) {
@@ -217,13 +213,13 @@ SLIPWALK_CLONES ForceSums viscous_forces_rows(contact::Frame& frame, double v0, 
                                        rows.row(Row::kQdx).data(), rows.row(Row::kQdy).data(),
                                        rows.row(Row::kC).data()};
   double* const Fxy = frame.Fxy.data();
-  ForceLanes<4> s;
+  ForceLanes s;
   for (Eigen::Index j = 0; j < rows.cols(); j += 4) {  // a multiple of four
     add_forces(r, j, frame.legs(), Fxy, v0, v1, om, s);
   }
-  const auto sum = [&s](auto ForceLanes<4>::*m) { return core::Lanes<4>::sum(s.*m); };
-  return {sum(&ForceLanes<4>::fx), sum(&ForceLanes<4>::fy), sum(&ForceLanes<4>::mz),
-          sum(&ForceLanes<4>::dissipation), sum(&ForceLanes<4>::scale)};
+  const auto sum = [&s](auto ForceLanes::*m) { return core::Lanes<4>::sum(s.*m); };
+  return {sum(&ForceLanes::fx), sum(&ForceLanes::fy), sum(&ForceLanes::mz),
+          sum(&ForceLanes::dissipation), sum(&ForceLanes::scale)};
 }
 
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,

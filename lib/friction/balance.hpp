@@ -53,6 +53,12 @@ struct Contacts {
   double c_sum = 0.0;        ///< Σ c_k, N
   bool anisotropic = false;  ///< some active foot has w_k ≠ 0
   bool rows = false;         ///< viscous_balance left the feet as rows in frame.viscous
+
+  /// L and 1/L from L² = max ‖q_xy,k‖² over the active feet (L = 1 when all are at the origin).
+  void set_lever_scale(double L2) {
+    L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
+    inv_L = 1.0 / L;
+  }
 };
 Contacts prepare(const contact::Robot& robot, contact::Frame& frame);
 

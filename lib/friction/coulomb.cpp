@@ -505,8 +505,7 @@ void Solver<kLoaded>::setup() {
   cs_.active = active;
   cs_.c_sum = c_sum;
   cs_.anisotropic = aniso;
-  cs_.L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
-  cs_.inv_L = 1.0 / cs_.L;
+  cs_.set_lever_scale(L2);
   // D(0) = Σ ‖d_k‖ two feet at a time, and the lever column over L: rows 4–5 of B, row and
   // column 2 of M (twice for the corner), b(2).
   const double il = cs_.inv_L;
