@@ -107,34 +107,12 @@ struct Sums {
   V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes_near{};
 };
 
-// Feet j … j + 3 of a pass at v (see pass()).
-template <bool kAll>
-[[gnu::always_inline]] inline void add_feet(const Rows& R, Eigen::Index j, const Eigen::Vector3d& v,
-                                            double threshold, double margin, Sums& s) {
-  using L = Lanes<4>;
-  using V = L::V;
-  const V y = L::load(R.in[kY] + j);
-  const V x = L::load(R.in[kMinusX] + j);
-  const V K = L::load(R.in[kK] + j);
-  const V h = y * L::splat(v(0)) + x * L::splat(v(1)) + (L::load(R.in[kQz] + j) + L::splat(v(2)));
-  V w;
-  V on;
-  if constexpr (kAll) {
-    w = K;
-    on = L::select(K > L::splat(0.0), L::splat(1.0));
-  } else {
-    const L::M touching = h < L::splat(threshold);
-    w = L::select(touching, K);
-    on = L::select(touching, L::splat(1.0));
-    const V d = on - L::load(R.on + j);
-    // Contact changes, and the feet within `margin` of their plane, either side (h² ≤ margin²,
-    // no abs needed).
-    s.changes_near += d * d + L::select(h * h <= L::splat(margin * margin), L::splat(kNearUnit));
-  }
-  L::store(R.on + j, on);
-  const V wy = w * y;
-  const V wx = w * x;
-  const V wh = w * h;
+// Adds feet j … j + 3 with weights w (K_j on the cell, else 0) and heights h to the sums.
+[[gnu::always_inline]] inline void accumulate(Sums& s, Sums::V w, Sums::V y, Sums::V x,
+                                              Sums::V h) {
+  const Sums::V wy = w * y;
+  const Sums::V wx = w * x;
+  const Sums::V wh = w * h;
   s.k += w;
   s.y += wy;
   s.x += wx;
@@ -146,17 +124,8 @@ template <bool kAll>
   s.gz += wh;
 }
 
-// One pass over the feet at v, four at a time. kAll: every foot counts (the start); else the feet
-// with h_j < threshold (by default −noise, Rows::noise: the outputs' contact convention), whose
-// flags are stored in row kOn and compared with the previous ones.
-template <bool kAll = false>
-[[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg,
-                                        double threshold) {
-  const double margin = kNearPlane * R.noise(v);
-  Sums s;
-  for (Eigen::Index j = 0; j < R.cols; j += 4) {  // the rows' length is a multiple of four
-    add_feet<kAll>(R, j, v, threshold, margin, s);
-  }
+// The quadratic model of the sums (the contact changes and near feet are the caller's).
+[[gnu::always_inline]] inline Cell cell_of(const Sums& s, double Mg) {
   const auto sum = [&s](auto Sums::*m) { return Lanes<4>::sum(s.*m); };
   const double sy = sum(&Sums::y);
   const double sx = sum(&Sums::x);
@@ -166,7 +135,39 @@ template <bool kAll = false>
       syx, sum(&Sums::xx), sx,     //
       sy, sx, sum(&Sums::k);
   c.g << sum(&Sums::gy), sum(&Sums::gx), sum(&Sums::gz) + Mg;
-  const double changes_near = sum(&Sums::changes_near);
+  return c;
+}
+
+// Feet j … j + 3 of a pass at v (see pass()).
+[[gnu::always_inline]] inline void add_feet(const Rows& R, Eigen::Index j, const Eigen::Vector3d& v,
+                                            double threshold, double margin, Sums& s) {
+  using L = Lanes<4>;
+  using V = L::V;
+  const V y = L::load(R.in[kY] + j);
+  const V x = L::load(R.in[kMinusX] + j);
+  const V h = y * L::splat(v(0)) + x * L::splat(v(1)) + (L::load(R.in[kQz] + j) + L::splat(v(2)));
+  const L::M touching = h < L::splat(threshold);
+  const V on = L::select(touching, L::splat(1.0));
+  const V d = on - L::load(R.on + j);
+  // Contact changes, and the feet within `margin` of their plane, either side (h² ≤ margin², no
+  // abs needed).
+  s.changes_near += d * d + L::select(h * h <= L::splat(margin * margin), L::splat(kNearUnit));
+  L::store(R.on + j, on);
+  accumulate(s, L::select(touching, L::load(R.in[kK] + j)), y, x, h);
+}
+
+// One pass over the feet at v, four at a time: the feet with h_j < threshold (by default −noise,
+// Rows::noise: the outputs' contact convention) make the cell; their flags are stored in row kOn
+// and compared with the previous ones.
+[[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg,
+                                        double threshold) {
+  const double margin = kNearPlane * R.noise(v);
+  Sums s;
+  for (Eigen::Index j = 0; j < R.cols; j += 4) {  // the rows' length is a multiple of four
+    add_feet(R, j, v, threshold, margin, s);
+  }
+  Cell c = cell_of(s, Mg);
+  const double changes_near = Lanes<4>::sum(s.changes_near);
   c.near = std::floor(changes_near * (1.0 / kNearUnit));  // exact: a power of two
   c.changes = changes_near - c.near * kNearUnit;
   return c;
@@ -174,7 +175,7 @@ template <bool kAll = false>
 
 // dv = −H⁻¹ g, solved in the scaled state ũ = D v, D = diag(L, L, 1) (il = 1/L) (H̃ = D⁻¹ H D⁻¹,
 // g̃ = D⁻¹ g) by the adjugate; false when H̃ is not safely definite (see the top).
-bool newton_step(const Cell& c, double il, Eigen::Vector3d& dv) {
+[[gnu::always_inline]] inline bool newton_step(const Cell& c, double il, Eigen::Vector3d& dv) {
   const double h00 = c.H(0, 0) * il * il;
   const double h10 = c.H(1, 0) * il * il;
   const double h11 = c.H(1, 1) * il * il;
@@ -274,6 +275,84 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
   return false;
 }
 
+// Writes the feet into the rows (the padding feet far above the ground, K = 0) and sums the
+// all-feet cell at v = 0 (every foot with K > 0 counts; h = q_z), four feet at a time: q is 3 × N
+// column-major (x y z x y z …), so three loads hold four feet and three shuffles part them. Also
+// the largest |q_y|, |q_x|, |q_z| (Rows::size) and q_x² + q_y² over the feet.
+[[gnu::always_inline]] inline Sums rows_and_start(const Robot& robot, const Frame& frame,
+                                                  double* const* row, Eigen::Index cols,
+                                                  Eigen::Vector3d& size, double& size2) {
+  using L = Lanes<4>;
+  using V = L::V;
+  const Eigen::Index n = frame.q.cols();
+  const double* const q = frame.q.data();
+  const double* const K = robot.K.data();
+  const auto abs = [](V a) {
+    return std::bit_cast<V>(std::bit_cast<L::M>(a) &
+                            (L::M{} + std::numeric_limits<std::int64_t>::max()));
+  };
+  Sums s;
+  V max_y{};
+  V max_x{};
+  V max_z{};
+  V max_r2{};
+  for (Eigen::Index j = 0; j < cols; j += 4) {
+    V x;
+    V y;
+    V z;
+    V k;
+    V z_row;
+    if (j + 4 <= n) {
+      const V a = L::load(q + 3 * j);  // x0 y0 z0 x1
+      const V b = L::load(q + 3 * j + 4);  // y1 z1 x2 y2
+      const V c = L::load(q + 3 * j + 8);  // z2 x3 y3 z3
+      const V ab_x = __builtin_shufflevector(a, b, 0, 3, 6, 6);
+      const V ab_y = __builtin_shufflevector(a, b, 1, 4, 7, 7);
+      const V ab_z = __builtin_shufflevector(a, b, 2, 5, 5, 5);
+      x = __builtin_shufflevector(ab_x, c, 0, 1, 2, 5);
+      y = __builtin_shufflevector(ab_y, c, 0, 1, 2, 6);
+      z = __builtin_shufflevector(ab_z, c, 0, 1, 4, 7);
+      k = L::load(K + j);
+      z_row = z;
+    } else {
+      // The last feet and the padding (at most three of each: once per call).
+      double t[4][5] = {};
+      for (Eigen::Index i = 0; i < 4; ++i) {
+        const bool foot = j + i < n;
+        t[i][0] = foot ? q[3 * (j + i)] : 0.0;
+        t[i][1] = foot ? q[3 * (j + i) + 1] : 0.0;
+        t[i][2] = foot ? q[3 * (j + i) + 2] : 0.0;
+        t[i][3] = foot ? K[j + i] : 0.0;
+        t[i][4] = foot ? t[i][2] : kAboveGround;
+      }
+      x = V{t[0][0], t[1][0], t[2][0], t[3][0]};
+      y = V{t[0][1], t[1][1], t[2][1], t[3][1]};
+      z = V{t[0][2], t[1][2], t[2][2], t[3][2]};
+      k = V{t[0][3], t[1][3], t[2][3], t[3][3]};
+      z_row = V{t[0][4], t[1][4], t[2][4], t[3][4]};
+    }
+    const V minus_x = -x;
+    L::store(row[kY] + j, y);
+    L::store(row[kMinusX] + j, minus_x);
+    L::store(row[kQz] + j, z_row);
+    L::store(row[kK] + j, k);
+    L::store(row[kOn] + j, L::select(k > L::splat(0.0), L::splat(1.0)));
+    max_y = max_y < abs(y) ? abs(y) : max_y;
+    max_x = max_x < abs(x) ? abs(x) : max_x;
+    max_z = max_z < abs(z) ? abs(z) : max_z;
+    const V r2 = x * x + y * y;
+    max_r2 = max_r2 < r2 ? r2 : max_r2;
+    accumulate(s, k, y, minus_x, z);  // the all-feet cell at v = 0: h = q_z, weight K
+  }
+  size.setZero();
+  size2 = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    size = size.cwiseMax(Eigen::Vector3d(max_y[i], max_x[i], max_z[i]));
+    size2 = std::max(size2, max_r2[i]);
+  }
+  return s;
+}
+
 }  // namespace
 
 SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
@@ -283,27 +362,11 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     return false;  // a frame resized by hand: leave it to the path search
   }
   const Eigen::Index cols = W.qy.cols();
-  // ---- the feet as rows, four per step; the padding feet far above the ground ----------------
+  // ---- the feet as rows, and the all-feet cell at v = 0, in one pass ------------------------
   double* const row[kRows] = {W.qy.data(), W.minus_qx.data(), W.qz.data(), W.K.data(), W.on.data()};
+  Eigen::Vector3d size;
   double size2 = 0.0;
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();
-  for (int j = 0; j < n; ++j) {
-    const double qx = frame.q(0, j);
-    const double qy = frame.q(1, j);
-    const double qz = frame.q(2, j);
-    row[kY][j] = qy;
-    row[kMinusX][j] = -qx;
-    row[kQz][j] = qz;
-    row[kK][j] = robot.K(j);
-    size = size.cwiseMax(Eigen::Vector3d(std::abs(qy), std::abs(qx), std::abs(qz)));
-    size2 = std::max(size2, qx * qx + qy * qy);
-  }
-  for (Eigen::Index j = n; j < cols; ++j) {
-    for (int i = 0; i < kRows; ++i) {
-      row[i][j] = 0.0;
-    }
-    row[kQz][j] = kAboveGround;
-  }
+  const Sums start = rows_and_start(robot, frame, row, cols, size, size2);
   const double L = size2 > 0.0 ? std::sqrt(size2) : 1.0;
   const double il = 1.0 / L;
   const double Mg = robot.Mg;
@@ -313,7 +376,7 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  Cell cell = pass<true>(R, v, Mg, 0.0);  // the all-feet cell
+  Cell cell = cell_of(start, Mg);  // the all-feet cell
   double changes = 0.0;
   double last = kInf;  // residual after the previous step, if its contact set was consistent
   for (int step = 1; step <= kMaxSteps; ++step) {
