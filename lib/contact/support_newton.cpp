@@ -212,6 +212,53 @@ double residual(const Cell& c, double inv_mg, double il) {
   return std::max({std::abs(c.g(2)), std::abs(c.g(0)) * il, std::abs(c.g(1)) * il}) * inv_mg;
 }
 
+// The part of the scaled gradient g̃ = D⁻¹ g in the null space of the scaled Hessian
+// H̃ = D⁻¹ H D⁻¹ = Σ_C K ã ãᵀ of a cell that is not safely definite (ã_j = D⁻¹ a_j). One or two
+// contacts (what an overshoot usually leaves) in closed form: the null space is the plane ⟂ ã₁,
+// or the line along ã₁ × ã₂. Otherwise (none, three or more on a line, or two so close to one
+// point that the cross product is rounding) the eigenvectors of H̃ below kDefiniteTol · tr H̃.
+Eigen::Vector3d null_part(const Rows& R, int n, const Cell& cell, const Eigen::Vector3d& scale) {
+  const Eigen::Vector3d g = cell.g.cwiseQuotient(scale);
+  int count = 0;
+  int on[2] = {-1, -1};
+  for (int j = 0; j < n; ++j) {
+    if (R.on[j] != 0.0) {
+      if (count < 2) {
+        on[count] = j;
+      }
+      ++count;
+    }
+  }
+  const auto a = [&R, &scale](int j) {
+    return Eigen::Vector3d(R.in[kY][j] / scale(0), R.in[kMinusX][j] / scale(1), 1.0);
+  };
+  if (count == 1) {
+    const Eigen::Vector3d a1 = a(on[0]);
+    return g - a1 * (a1.dot(g) / a1.squaredNorm());
+  }
+  if (count == 2) {
+    const Eigen::Vector3d a1 = a(on[0]);
+    const Eigen::Vector3d a2 = a(on[1]);
+    const Eigen::Vector3d axis = a1.cross(a2);
+    const double axis2 = axis.squaredNorm();
+    if (axis2 > 1e-8 * a1.squaredNorm() * a2.squaredNorm()) {  // sin² of their angle > 1e-8
+      return axis * (axis.dot(g) / axis2);
+    }
+  }
+  const Eigen::Matrix3d H =
+      scale.cwiseInverse().asDiagonal() * cell.H * scale.cwiseInverse().asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(H);
+  const double floor = kDefiniteTol * std::max(H.trace(), 0.0);
+  Eigen::Vector3d g_null = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    if (es.eigenvalues()(i) <= floor) {
+      g_null += es.eigenvectors().col(i) * es.eigenvectors().col(i).dot(g);
+    }
+  }
+  return g_null;
+}
+
 // A step from a cell that is not safely definite: fewer than three contacts off a line at v
 // (the previous step overshot). Its quadratic has no minimizer; Alg. 1 would tilt here (eqs.
 // 3.11, 3.12: d = −g_N, the moment the contacts cannot take, spring_support.cpp), keeping every
@@ -228,19 +275,7 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
   const Eigen::Vector3d scale(L, L, 1.0);  // scaled state ũ = D v (spring_support.cpp)
   Eigen::Vector3d at = v;
   for (int tilt = 0; tilt < kMaxTilts; ++tilt) {
-    // The null space of the scaled Hessian and the gradient's part in it.
-    const Eigen::Matrix3d H =
-        scale.cwiseInverse().asDiagonal() * cell.H * scale.cwiseInverse().asDiagonal();
-    const Eigen::Vector3d g = cell.g.cwiseQuotient(scale);
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-    es.computeDirect(H);
-    const double floor = kDefiniteTol * std::max(H.trace(), 0.0);
-    Eigen::Vector3d g_null = Eigen::Vector3d::Zero();
-    for (int i = 0; i < 3; ++i) {
-      if (es.eigenvalues()(i) <= floor) {
-        g_null += es.eigenvectors().col(i) * es.eigenvectors().col(i).dot(g);
-      }
-    }
+    const Eigen::Vector3d g_null = null_part(R, n, cell, scale);
     if (!(g_null.norm() > kFlatTilt * Mg)) {
       return false;  // nothing to tilt: a line or point support under the CoM
     }
