@@ -100,34 +100,29 @@ CoulombScratch::CoulombScratch(int legs)
 
 namespace detail {
 
-// Whether |x_i| ≤ bound for all n values of x, NaN failing: the largest |x_i| (lane-wise maxima,
-// which keep a NaN of x out: a < b is false) and the sum of x_i · 0, which is NaN exactly when
-// some x_i is NaN or infinite. Branch-free, four lanes at a time (a short-circuiting test per
-// value was the model's largest per-leg cost after the support search itself).
+// Whether |x_i| ≤ bound for all n values of x: a lane mask ANDed over the values, four at a time
+// (a comparison with NaN is false, so NaN and infinity fail without a test of their own), the last
+// four overlapping the ones before them (testing a value twice is harmless). Branch-free: a
+// short-circuiting test per value was the model's largest per-leg cost after the support search.
 SLIPWALK_CLONES bool within(const double* x, Eigen::Index n, double bound) {
   using L = core::Lanes<4>;
   using V = L::V;
-  const V sign_off = std::bit_cast<V>(L::M{} + std::numeric_limits<std::int64_t>::max());
-  V largest{};
-  V probe{};
-  Eigen::Index i = 0;
-  for (; i + 4 <= n; i += 4) {
-    const V v = L::load(x + i);
-    const V a = std::bit_cast<V>(std::bit_cast<L::M>(v) & std::bit_cast<L::M>(sign_off));
-    largest = largest < a ? a : largest;
-    probe += v * 0.0;
+  if (n < 4) {
+    bool ok = true;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      ok = ok && std::abs(x[i]) <= bound;
+    }
+    return ok;
   }
-  double m = 0.0;
-  double p = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    m = std::max(m, largest[k]);
-    p += probe[k];
+  const L::M sign_off = L::M{} + std::numeric_limits<std::int64_t>::max();
+  const auto abs = [&sign_off](V v) { return std::bit_cast<V>(std::bit_cast<L::M>(v) & sign_off); };
+  const V limit = L::splat(bound);
+  L::M ok = L::M{} - 1;  // every lane true
+  for (Eigen::Index i = 0; i + 4 <= n; i += 4) {
+    ok &= abs(L::load(x + i)) <= limit;
   }
-  for (; i < n; ++i) {
-    m = std::max(m, std::abs(x[i]));
-    p += x[i] * 0.0;
-  }
-  return m <= bound && p == 0.0;
+  ok &= abs(L::load(x + n - 4)) <= limit;
+  return (ok[0] & ok[1] & ok[2] & ok[3]) != 0;
 }
 
 }  // namespace detail

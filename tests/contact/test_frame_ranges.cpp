@@ -13,6 +13,7 @@
 
 #include "connection/local_connection.hpp"
 #include "contact/frame_json.hpp"
+#include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
@@ -199,6 +200,34 @@ TEST(FrameRanges, LegCountsOutsideOneToTheLimitAreRefused) {
     }
   }
   EXPECT_EQ(parse_robot_json(R"({"legs": 100000})", "r.json").legs(), limits::kMaxLegs);
+}
+
+TEST(FrameRanges, CheckFrameRefusesEveryOutOfRangeEntryAtEveryPlaceAndEveryLegCount) {
+  // check_frame tests four values at a time with an overlapping last group: every entry of q and
+  // q̇, at every leg count up to nine (3N from 3 to 27 values: every remainder), is tested, and
+  // the bounds themselves are admitted.
+  const double bad[] = {std::nan(""), INFINITY, -INFINITY, 1.0000001e3, -2e3, 1e300};
+  for (int n = 1; n <= 9; ++n) {
+    const Robot robot = uniform_robot(n);
+    Frame frame(robot);
+    frame.q.setConstant(-0.1);
+    frame.qdot.setZero();
+    frame.q(0, n - 1) = limits::kPosition.hi;
+    frame.q(1, 0) = limits::kPosition.lo;
+    frame.qdot(2, n - 1) = limits::kVelocity.lo;
+    ASSERT_NO_THROW(check_frame(robot, frame)) << n << " legs";
+    for (Eigen::Index at = 0; at < 3 * n; ++at) {
+      for (const double x : bad) {
+        for (Eigen::Matrix3Xd* m : {&frame.q, &frame.qdot}) {
+          const double keep = m->data()[at];
+          m->data()[at] = x;  // both ranges are ±1e3
+          EXPECT_THROW(check_frame(robot, frame), core::InputError)
+              << n << " legs, entry " << at << " = " << m->data()[at];
+          m->data()[at] = keep;
+        }
+      }
+    }
+  }
 }
 
 TEST(FrameRanges, ValidateStatesTheRangeOfEveryRobotField) {
