@@ -108,8 +108,7 @@ struct Sums {
 };
 
 // Adds feet j … j + 3 with weights w (K_j on the cell, else 0) and heights h to the sums.
-[[gnu::always_inline]] inline void accumulate(Sums& s, Sums::V w, Sums::V y, Sums::V x,
-                                              Sums::V h) {
+[[gnu::always_inline]] inline void accumulate(Sums& s, Sums::V w, Sums::V y, Sums::V x, Sums::V h) {
   const Sums::V wy = w * y;
   const Sums::V wx = w * x;
   const Sums::V wh = w * h;
@@ -312,8 +311,8 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
 
 // Writes the feet into the rows (the padding feet far above the ground, K = 0) and sums the
 // all-feet cell at v = 0 (every foot with K > 0 counts; h = q_z), four feet at a time: q is 3 × N
-// column-major (x y z x y z …), so three loads hold four feet and three shuffles part them. Also
-// the largest |q_y|, |q_x|, |q_z| (Rows::size) and q_x² + q_y² over the feet.
+// column-major (core::load_columns3). Also the largest |q_y|, |q_x|, |q_z| (Rows::size) and q_x² +
+// q_y² over the feet.
 [[gnu::always_inline]] inline Sums rows_and_start(const Robot& robot, const Frame& frame,
                                                   double* const* row, Eigen::Index cols,
                                                   Eigen::Vector3d& size, double& size2) {
@@ -335,37 +334,9 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
     V x;
     V y;
     V z;
-    V k;
-    V z_row;
-    if (j + 4 <= n) {
-      const V a = L::load(q + 3 * j);  // x0 y0 z0 x1
-      const V b = L::load(q + 3 * j + 4);  // y1 z1 x2 y2
-      const V c = L::load(q + 3 * j + 8);  // z2 x3 y3 z3
-      const V ab_x = __builtin_shufflevector(a, b, 0, 3, 6, 6);
-      const V ab_y = __builtin_shufflevector(a, b, 1, 4, 7, 7);
-      const V ab_z = __builtin_shufflevector(a, b, 2, 5, 5, 5);
-      x = __builtin_shufflevector(ab_x, c, 0, 1, 2, 5);
-      y = __builtin_shufflevector(ab_y, c, 0, 1, 2, 6);
-      z = __builtin_shufflevector(ab_z, c, 0, 1, 4, 7);
-      k = L::load(K + j);
-      z_row = z;
-    } else {
-      // The last feet and the padding (at most three of each: once per call).
-      double t[4][5] = {};
-      for (Eigen::Index i = 0; i < 4; ++i) {
-        const bool foot = j + i < n;
-        t[i][0] = foot ? q[3 * (j + i)] : 0.0;
-        t[i][1] = foot ? q[3 * (j + i) + 1] : 0.0;
-        t[i][2] = foot ? q[3 * (j + i) + 2] : 0.0;
-        t[i][3] = foot ? K[j + i] : 0.0;
-        t[i][4] = foot ? t[i][2] : kAboveGround;
-      }
-      x = V{t[0][0], t[1][0], t[2][0], t[3][0]};
-      y = V{t[0][1], t[1][1], t[2][1], t[3][1]};
-      z = V{t[0][2], t[1][2], t[2][2], t[3][2]};
-      k = V{t[0][3], t[1][3], t[2][3], t[3][3]};
-      z_row = V{t[0][4], t[1][4], t[2][4], t[3][4]};
-    }
+    core::load_columns3(q, n, j, x, y, z);
+    const V k = core::load_padded(K, n, j);
+    const V z_row = core::lanes_below(j, n) ? z : L::splat(kAboveGround);
     const V minus_x = -x;
     L::store(row[kY] + j, y);
     L::store(row[kMinusX] + j, minus_x);

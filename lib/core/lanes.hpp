@@ -13,6 +13,7 @@
 // GCC's note that passing them without AVX would change the ABI does not apply: it is silenced for
 // the files that include this header (only .cpp files with passes over the feet do).
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -56,5 +57,101 @@ struct Lanes {
     return s;
   }
 };
+
+// Loading the feet of a pass four at a time, group j … j + 3 of n feet. Where the group is not
+// full (the last, r = n − j < 4 feet), the loads never read past the end: for n ≥ 4 they read
+// the group at n − 4 and shuffle its last r feet down to lanes 0 … r − 1 (one shuffle, on the
+// count r that is fixed per robot); for n < 4 lane by lane. The other lanes are 0. (A tail read
+// in a loop cost more than a whole group: GCC turns such loops into calls to memcpy.)
+
+/// Lane i is all ones where j + i < n: the feet of a group, not its padding.
+[[gnu::always_inline]] inline Lanes<4>::M lanes_below(std::ptrdiff_t j, std::ptrdiff_t n) {
+  return Lanes<4>::M{0, 1, 2, 3} + j < n;
+}
+
+/// The last r lanes of v (1 ≤ r ≤ 3) moved to lanes 0 … r − 1, zeros after them.
+template <class T>
+[[gnu::always_inline]] inline T tail_lanes(T v, std::ptrdiff_t r) {
+  const T zero{};
+  switch (r) {
+    case 1:
+      return __builtin_shufflevector(v, zero, 3, 4, 5, 6);
+    case 2:
+      return __builtin_shufflevector(v, zero, 2, 3, 4, 5);
+    default:
+      return __builtin_shufflevector(v, zero, 1, 2, 3, 4);
+  }
+}
+
+/// Columns j … j + 3 of a 3 × n column-major matrix m (x y z x y z …, Eigen's Matrix3Xd) as
+/// three lanes, columns at or beyond n as 0: three loads parted by shuffles.
+[[gnu::always_inline]] inline void load_columns3(const double* m, std::ptrdiff_t n,
+                                                 std::ptrdiff_t j, Lanes<4>::V& x, Lanes<4>::V& y,
+                                                 Lanes<4>::V& z) {
+  using L = Lanes<4>;
+  using V = L::V;
+  if (n < 4) {
+    x = V{m[0], n > 1 ? m[3] : 0.0, n > 2 ? m[6] : 0.0, 0.0};
+    y = V{m[1], n > 1 ? m[4] : 0.0, n > 2 ? m[7] : 0.0, 0.0};
+    z = V{m[2], n > 1 ? m[5] : 0.0, n > 2 ? m[8] : 0.0, 0.0};
+    return;
+  }
+  const std::ptrdiff_t at = j + 4 <= n ? j : n - 4;
+  const V a = L::load(m + 3 * at);      // x0 y0 z0 x1
+  const V b = L::load(m + 3 * at + 4);  // y1 z1 x2 y2
+  const V c = L::load(m + 3 * at + 8);  // z2 x3 y3 z3
+  x = __builtin_shufflevector(__builtin_shufflevector(a, b, 0, 3, 6, 6), c, 0, 1, 2, 5);
+  y = __builtin_shufflevector(__builtin_shufflevector(a, b, 1, 4, 7, 7), c, 0, 1, 2, 6);
+  z = __builtin_shufflevector(__builtin_shufflevector(a, b, 2, 5, 5, 5), c, 0, 1, 4, 7);
+  if (at != j) {
+    x = tail_lanes(x, n - j);
+    y = tail_lanes(y, n - j);
+    z = tail_lanes(z, n - j);
+  }
+}
+
+/// Entries j … j + 3 of a vector of n doubles, entries at or beyond n as 0.
+[[gnu::always_inline]] inline Lanes<4>::V load_padded(const double* p, std::ptrdiff_t n,
+                                                      std::ptrdiff_t j) {
+  if (n < 4) {
+    return Lanes<4>::V{p[0], n > 1 ? p[1] : 0.0, n > 2 ? p[2] : 0.0, 0.0};
+  }
+  if (j + 4 <= n) {
+    return Lanes<4>::load(p + j);
+  }
+  return tail_lanes(Lanes<4>::load(p + n - 4), n - j);
+}
+
+/// Lane i is all ones where flag p[j + i] (a char, j + i < n) is not 0.
+[[gnu::always_inline]] inline Lanes<4>::M load_flags(const char* p, std::ptrdiff_t n,
+                                                     std::ptrdiff_t j) {
+  using Chars = char __attribute__((vector_size(4)));
+  Chars c;
+  if (n < 4) {
+    c = Chars{p[0], n > 1 ? p[1] : char{0}, n > 2 ? p[2] : char{0}, 0};
+  } else {
+    std::memcpy(&c, p + (j + 4 <= n ? j : n - 4), sizeof c);
+    if (j + 4 > n) {
+      c = tail_lanes(c, n - j);
+    }
+  }
+  return __builtin_convertvector(c, Lanes<4>::M) != 0;
+}
+
+/// Stores lanes 0 … n − j − 1 of v to p[j …] (all four where j + 4 ≤ n).
+[[gnu::always_inline]] inline void store_padded(double* p, std::ptrdiff_t n, std::ptrdiff_t j,
+                                                Lanes<4>::V v) {
+  if (j + 4 <= n) {
+    Lanes<4>::store(p + j, v);
+    return;
+  }
+  p[j] = v[0];
+  if (j + 1 < n) {
+    p[j + 1] = v[1];
+  }
+  if (j + 2 < n) {
+    p[j + 2] = v[2];
+  }
+}
 
 }  // namespace slipwalk::core

@@ -98,9 +98,11 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // The isotropic assembly (every foot G = I, the usual robot), which also leaves the feet as rows in
 // frame.viscous (contact/robot.hpp) with their weights c_k. Returns false, with nothing assembled,
 // for an anisotropic robot.
-bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
-                          Eigen::Vector3d& b, Contacts& out) {
-  const int n = frame.legs();
+SLIPWALK_CLONES bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame,
+                                          Eigen::Matrix3d& M, Eigen::Vector3d& b, Contacts& out) {
+  using L = core::Lanes<4>;
+  using V = L::V;
+  const Eigen::Index n = frame.legs();
   auto& rows = frame.viscous.rows;
   double* const r[Row::kRows] = {rows.row(Row::kQx).data(), rows.row(Row::kQy).data(),
                                  rows.row(Row::kQdx).data(), rows.row(Row::kQdy).data(),
@@ -110,38 +112,42 @@ bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Ei
   if (!(robot.w.array() == 0.0).all()) {
     return false;
   }
-  // One scalar pass: the feet into the rows, for the force pass after the solve (loaded four at a
-  // time there, long after these stores: loading them here would stall on store forwarding), and
-  // the sums of M and b with G = I (seven, where the general loop needs nine and more products).
-  // Plain pointers, and few enough accumulators to stay in registers.
+  // One pass, four feet at a time: the feet into the rows (for the force pass after the solve and
+  // the columns of A) and the sums of M and b with G = I (seven, where the general loop needs nine
+  // and more products). The padding feet of the last group read as q = 0, c = 0.
   const double* const q = frame.q.data();
   const double* const qd = frame.qdot.data();
   const double* const Fz = frame.Fz.data();
   const double* const mu = robot.mu.data();
   const char* const contact = frame.contact.data();
   double* const weights = frame.work_n.data();
-  double L2 = 0.0;
-  int active = 0;
-  double sc = 0.0, scx = 0.0, scy = 0.0, scrr = 0.0, scdx = 0.0, scdy = 0.0, scm = 0.0;
-  for (int k = 0; k < n; ++k) {
+  V L2{};
+  V active{};
+  V sc{}, scx{}, scy{}, scrr{}, scdx{}, scdy{}, scm{};
+  for (Eigen::Index j = 0; j < rows.cols(); j += 4) {  // a multiple of four
+    V x;
+    V y;
+    V z;
+    V dx;
+    V dy;
+    V dz;
+    core::load_columns3(q, n, j, x, y, z);
+    core::load_columns3(qd, n, j, dx, dy, dz);
     // friction_weight(): c = μ F_z for a foot in contact with finite positive c, else 0.
-    const double cm = mu[k] * Fz[k];
-    const double c = contact[k] != 0 && cm > 0.0 && cm < kInfinity ? cm : 0.0;
-    const std::ptrdiff_t at = 3 * static_cast<std::ptrdiff_t>(k);  // column k of a 3 x N matrix
-    const double x = q[at];
-    const double y = q[at + 1];
-    const double dx = qd[at];
-    const double dy = qd[at + 1];
-    weights[k] = c;
-    r[Row::kC][k] = c;
-    r[Row::kQx][k] = x;
-    r[Row::kQy][k] = y;
-    r[Row::kQdx][k] = dx;
-    r[Row::kQdy][k] = dy;
-    const double cx = c * x;
-    const double cy = c * y;
-    active += c > 0.0 ? 1 : 0;
-    L2 = std::max(L2, c > 0.0 ? x * x + y * y : 0.0);
+    const V cm = core::load_padded(mu, n, j) * core::load_padded(Fz, n, j);
+    const L::M on = core::load_flags(contact, n, j) & (cm > 0.0) & (cm < kInfinity);
+    const V c = L::select(on, cm);
+    core::store_padded(weights, n, j, c);
+    L::store(r[Row::kC] + j, c);
+    L::store(r[Row::kQx] + j, x);
+    L::store(r[Row::kQy] + j, y);
+    L::store(r[Row::kQdx] + j, dx);
+    L::store(r[Row::kQdy] + j, dy);
+    const V cx = c * x;
+    const V cy = c * y;
+    active += L::select(on, L::splat(1.0));
+    const V rr = L::select(on, x * x + y * y);
+    L2 = L2 < rr ? rr : L2;
     sc += c;
     scx += cx;
     scy += cy;
@@ -150,14 +156,16 @@ bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Ei
     scdy += c * dy;
     scm += cx * dy - cy * dx;  // (S q)ᵀ q̇ c = (−q_y q̇_x + q_x q̇_y) c
   }
-  out.active = active;
-  out.c_sum = sc;
+  out.active = static_cast<int>(L::sum(active));
+  out.c_sum = L::sum(sc);
   out.anisotropic = false;
   out.rows = true;
-  out.set_lever_scale(L2);
+  out.set_lever_scale(std::max(std::max(L2[0], L2[1]), std::max(L2[2], L2[3])));
   const double il = out.inv_L;
-  M << sc, 0.0, -scy * il, 0.0, sc, scx * il, -scy * il, scx * il, scrr * il * il;
-  b << scdx, scdy, scm * il;
+  const double sx = L::sum(scx) * il;
+  const double sy = L::sum(scy) * il;
+  M << out.c_sum, 0.0, -sy, 0.0, out.c_sum, sx, -sy, sx, L::sum(scrr) * il * il;
+  b << L::sum(scdx), L::sum(scdy), L::sum(scm) * il;
   return true;
 }
 
