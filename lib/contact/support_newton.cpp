@@ -93,18 +93,15 @@ struct Cell {
   Eigen::Matrix3d H;  // Σ_C K a aᵀ
   Eigen::Vector3d g;  // Σ_C K h a + Mg e_z = (M_x, M_y, Mg − ΣF_z)
   double changes = 0.0;
-  double near = 0.0;  // feet within kNearPlane × the rounding error of their contact plane
 };
 
-// The sums of one pass, per lane. Ten accumulators, not eleven: with the temporaries of a step
-// they fit the sixteen vector registers of x86-64, where an eleventh was kept in memory and put
-// a store and a load on the loop's critical path. So the contact changes and the feet near their
-// plane share one accumulator, counted in units of 1 and kNearUnit (both counts are integers
-// below limits::kMaxLegs < kNearUnit, so the sum and its split are exact in doubles).
-constexpr double kNearUnit = 1048576.0;  // 2^20
+// The sums of one pass, per lane. Ten accumulators: with the temporaries of a step they fit the
+// sixteen vector registers of x86-64, where an eleventh (the count of feet near their plane) was
+// kept in memory and put a store and a load on the loop's critical path; that count is needed
+// only where a pass may certify, and has a pass of its own there (near_plane()).
 struct Sums {
   using V = Lanes<4>::V;
-  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes_near{};
+  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes{};
 };
 
 // Adds feet j … j + 3 with weights w (K_j on the cell, else 0) and heights h to the sums.
@@ -123,7 +120,7 @@ struct Sums {
   s.gz += wh;
 }
 
-// The quadratic model of the sums (the contact changes and near feet are the caller's).
+// The quadratic model of the sums (the contact changes are the caller's).
 [[gnu::always_inline]] inline Cell cell_of(const Sums& s, double Mg) {
   const auto sum = [&s](auto Sums::*m) { return Lanes<4>::sum(s.*m); };
   const double sy = sum(&Sums::y);
@@ -139,7 +136,7 @@ struct Sums {
 
 // Feet j … j + 3 of a pass at v (see pass()).
 [[gnu::always_inline]] inline void add_feet(const Rows& R, Eigen::Index j, const Eigen::Vector3d& v,
-                                            double threshold, double margin, Sums& s) {
+                                            double threshold, Sums& s) {
   using L = Lanes<4>;
   using V = L::V;
   const V y = L::load(R.in[kY] + j);
@@ -148,9 +145,7 @@ struct Sums {
   const L::M touching = h < L::splat(threshold);
   const V on = L::select(touching, L::splat(1.0));
   const V d = on - L::load(R.on + j);
-  // Contact changes, and the feet within `margin` of their plane, either side (h² ≤ margin², no
-  // abs needed).
-  s.changes_near += d * d + L::select(h * h <= L::splat(margin * margin), L::splat(kNearUnit));
+  s.changes += d * d;
   L::store(R.on + j, on);
   accumulate(s, L::select(touching, L::load(R.in[kK] + j)), y, x, h);
 }
@@ -160,16 +155,29 @@ struct Sums {
 // and compared with the previous ones.
 [[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg,
                                         double threshold) {
-  const double margin = kNearPlane * R.noise(v);
   Sums s;
   for (Eigen::Index j = 0; j < R.cols; j += 4) {  // the rows' length is a multiple of four
-    add_feet(R, j, v, threshold, margin, s);
+    add_feet(R, j, v, threshold, s);
   }
   Cell c = cell_of(s, Mg);
-  const double changes_near = Lanes<4>::sum(s.changes_near);
-  c.near = std::floor(changes_near * (1.0 / kNearUnit));  // exact: a power of two
-  c.changes = changes_near - c.near * kNearUnit;
+  c.changes = Lanes<4>::sum(s.changes);
   return c;
+}
+
+// Whether a foot is within kNearPlane × the heights' rounding error (Rows::noise) of its plane at
+// v, either side (h² ≤ margin², no abs needed); the padding feet are far above.
+[[gnu::always_inline]] inline bool near_plane(const Rows& R, const Eigen::Vector3d& v) {
+  using L = Lanes<4>;
+  using V = L::V;
+  const double margin = kNearPlane * R.noise(v);
+  L::M near{};
+  for (Eigen::Index j = 0; j < R.cols; j += 4) {
+    const V h = L::load(R.in[kY] + j) * L::splat(v(0)) +
+                L::load(R.in[kMinusX] + j) * L::splat(v(1)) +
+                (L::load(R.in[kQz] + j) + L::splat(v(2)));
+    near |= h * h <= L::splat(margin * margin);
+  }
+  return (near[0] | near[1] | near[2] | near[3]) != 0;
 }
 
 // dv = −H⁻¹ g, solved in the scaled state ũ = D v, D = diag(L, L, 1) (il = 1/L) (H̃ = D⁻¹ H D⁻¹,
@@ -399,24 +407,27 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
       last = kInf;
       continue;
     }
-    if (cell.near != 0.0) {
-      return false;  // not strictly complementary: let Alg. 1 handle the tie
-    }
     const double r = residual(cell, inv_mg, il);
     if (r <= kPolished || (r >= 0.5 * last && r <= kRoundingCap)) {
+      if (near_plane(R, v)) {
+        return false;  // not strictly complementary: let Alg. 1 handle the tie
+      }
       // ---- certified: the outputs, with the loads of eq. 3.7 -------------------------------
       frame.alpha = v(0);
       frame.beta = v(1);
       frame.z = v(2);
-      // (Plain pointers: a store through char* may alias anything, and through the frame's
-      // members it would reload every pointer at every foot.)
+      // Four feet at a time (plain pointers: a store through char* may alias anything, and
+      // through the frame's members it would reload every pointer at every foot).
       char* const contact = frame.contact.data();
       double* const Fz = frame.Fz.data();
-      for (int j = 0; j < n; ++j) {
-        const bool on = row[kOn][j] != 0.0;
-        const double h = row[kY][j] * v(0) + row[kMinusX][j] * v(1) + (row[kQz][j] + v(2));
-        contact[j] = on ? 1 : 0;
-        Fz[j] = on ? -row[kK][j] * h : 0.0;
+      using Four = Lanes<4>;
+      for (Eigen::Index j = 0; j < n; j += 4) {
+        const Four::V h = Four::load(row[kY] + j) * Four::splat(v(0)) +
+                          Four::load(row[kMinusX] + j) * Four::splat(v(1)) +
+                          (Four::load(row[kQz] + j) + Four::splat(v(2)));
+        const Four::M on = Four::load(row[kOn] + j) != Four::splat(0.0);
+        core::store_flags(contact, n, j, on);
+        core::store_padded(Fz, n, j, Four::select(on, -Four::load(row[kK] + j) * h));
       }
       summary.status = SupportSummary::Status::kBalanced;
       summary.route = SupportSummary::Route::kNewton;

@@ -138,6 +138,25 @@ template <class T>
   return __builtin_convertvector(c, Lanes<4>::M) != 0;
 }
 
+/// Stores flags p[j …] (a char each: 1 where lane i of m is all ones, else 0), lanes
+/// 0 … n − j − 1.
+[[gnu::always_inline]] inline void store_flags(char* p, std::ptrdiff_t n, std::ptrdiff_t j,
+                                               Lanes<4>::M m) {
+  using Chars = char __attribute__((vector_size(4)));
+  const Chars c = __builtin_convertvector(m & 1, Chars);
+  if (j + 4 <= n) {
+    std::memcpy(p + j, &c, sizeof c);
+    return;
+  }
+  p[j] = c[0];
+  if (j + 1 < n) {
+    p[j + 1] = c[1];
+  }
+  if (j + 2 < n) {
+    p[j + 2] = c[2];
+  }
+}
+
 /// Stores lanes 0 … n − j − 1 of v to p[j …] (all four where j + 4 ≤ n).
 [[gnu::always_inline]] inline void store_padded(double* p, std::ptrdiff_t n, std::ptrdiff_t j,
                                                 Lanes<4>::V v) {
