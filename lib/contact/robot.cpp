@@ -127,6 +127,8 @@ SLIPWALK_CLONES bool within(const double* x, Eigen::Index n, double bound) {
 
 }  // namespace detail
 
+bool Robot::isotropic() const { return detail::within(w.data(), w.size(), 0.0); }
+
 namespace {
 
 // The cold path of check_frame: names the first value out of its range.

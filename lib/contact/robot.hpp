@@ -51,6 +51,8 @@ struct Robot {
   double Mg = 1.0;     ///< N, total weight carried by the legs; valid: limits::kWeight
 
   [[nodiscard]] int legs() const { return static_cast<int>(K.size()); }
+  /// Whether every foot's w is zero (G = I: the friction passes' isotropic kernels apply).
+  [[nodiscard]] bool isotropic() const;
 };
 
 /// A robot with n legs, all with stiffness K, friction μ, isotropic.

@@ -109,7 +109,7 @@ SLIPWALK_CLONES bool viscous_balance_rows(const contact::Robot& robot, contact::
                                  rows.row(Row::kC).data()};
   // G = I for every foot: no anisotropy anywhere (checked on the robot, so that the pass below
   // carries no term for it).
-  if (!(robot.w.array() == 0.0).all()) {
+  if (!robot.isotropic()) {
     return false;
   }
   // One pass, four feet at a time: the feet into the rows (for the force pass after the solve and

@@ -41,7 +41,7 @@ void size_node(const PlanRobot& robot, const PlanOptions& options, NodeTable& ta
   table.free_legs.reserve(static_cast<std::size_t>(table.legs));
   table.start_contact.assign(static_cast<std::size_t>(table.legs), 0);
   table.start_Fz = Eigen::VectorXd::Zero(table.legs);
-  table.isotropic = (robot.robot.w.array() == 0.0).all();
+  table.isotropic = robot.robot.isotropic();
 }
 
 void build_node(const PlanRobot& robot, const PlanOptions& options, const Eigen::VectorXd& phi,
