@@ -238,13 +238,16 @@ struct BalanceSum {
     force += f;
     moment += frame.q(0, k) * f(1) - frame.q(1, k) * f(0);
   }
+  /// max(‖ΣF‖, |ΣM| / L) / force_scale (0 when nothing is in balance). The square root, |ΣM| / L
+  /// and 1 / force_scale are independent: one multiplication after the root, not a division (the
+  /// residual ends every solve's serial path).
   [[nodiscard]] double residual(double force_scale, double L) const {
     if (!(force_scale > 0.0)) {
       return 0.0;
     }
-    const double r = force.norm() / force_scale;
-    const double m = std::abs(moment) / (force_scale * L);
-    return r > m ? r : m;
+    const double r = force.norm();
+    const double m = std::abs(moment) / L;
+    return (r > m ? r : m) * (1.0 / force_scale);
   }
 };
 
