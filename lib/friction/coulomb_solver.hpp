@@ -378,7 +378,7 @@ class Solver {
   /// The answer from a point y and a dual candidate: one pass (finish_pass) builds, balances and
   /// writes the forces, which are then scaled into the disks; the reported velocity is the Newton
   /// point y + p unless D is higher there, and the certificate is the candidate's exact gap.
-  void finish(Eigen::Vector3d y, const Dual& dual);
+  [[gnu::flatten]] void finish(Eigen::Vector3d y, const Dual& dual);
   /// Whether D has a flat direction at the optimum (coulomb.cpp, non-uniqueness), given the sliding
   /// feet's part of Q and the certified dual λ in work_2n.
   bool flat_direction(Eigen::Matrix3d Q, int n_static) const;
@@ -428,7 +428,7 @@ class Solver {
   /// Active-set polish from y (a point of the smoothing path at δ) with the static feet marked
   /// in work_idx. On success (relative gap ≤ tol) y and `dual` are the certified pair (static
   /// feet's λ in work_2n).
-  bool polish(Eigen::Vector3d& y, double delta, Dual& dual);
+  [[gnu::flatten]] bool polish(Eigen::Vector3d& y, double delta, Dual& dual);
   /// The dual when two or more distinct static points fix y (no Newton step): unit directions
   /// for sliding feet, least-norm balancing forces for static ones, fitted into their disks.
   bool fixed_point_dual(const Eigen::Vector3d& y, const Sums& S, const detail::Psd3& static_solver,
