@@ -1064,8 +1064,8 @@ void Solver<kLoaded>::finish(Eigen::Vector3d y, const Dual& dual) {
       ++n_static;
       if (first < 0) {
         first = k;
-      } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).norm() >
-                 1e-6 * cs_.L) {
+      } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).squaredNorm() >
+                 1e-12 * cs_.L * cs_.L) {
         distinct = true;
       }
     }
@@ -1235,21 +1235,49 @@ template <bool kLoaded>
 template <bool kLoaded>
 bool Solver<kLoaded>::flat_direction(Eigen::Matrix3d Q, int n_static) const {
   if (n_static > 0) {
+    // Scalar sums read off the rows (small Eigen sums stall on store forwarding): t tᵀ/c_k with
+    // t = B_kᵀ n⊥ (n = λ_k/‖λ_k‖) on the rim, B_kᵀB_k/c_k inside.
+    const contact::CoulombScratch& R = frame_.coulomb;
+    double q[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     for (int k = 0; k < frame_.legs(); ++k) {
       if (state(k) != kStatic) {
         continue;
       }
-      const Eigen::Vector2d lam = frame_.work_2n.col(k);
-      const double nl = lam.norm();
-      const Mat23 Bk = B(k);
+      const double l0 = frame_.work_2n(0, k);
+      const double l1 = frame_.work_2n(1, k);
+      const double nl = std::sqrt(l0 * l0 + l1 * l1);
+      const double b0 = R.B(0, k), b1 = R.B(1, k), b2 = R.B(2, k);
+      const double b3 = R.B(3, k), b4 = R.B(4, k), b5 = R.B(5, k);
+      const double ic = 1.0 / weight(k);
       if (nl >= 1.0 - 1e-9) {
-        const Eigen::Vector2d np(-lam(1) / nl, lam(0) / nl);
-        const Eigen::Vector3d t = Bk.transpose() * np;
-        Q += t * t.transpose() / weight(k);
+        const double a = ic / (nl * nl);  // t = B_kᵀ(−λ₁, λ₀)/‖λ‖
+        const double t0 = b1 * l0 - b0 * l1;
+        const double t1 = b3 * l0 - b2 * l1;
+        const double t2 = b5 * l0 - b4 * l1;
+        q[0] += a * t0 * t0;
+        q[1] += a * t0 * t1;
+        q[2] += a * t0 * t2;
+        q[3] += a * t1 * t1;
+        q[4] += a * t1 * t2;
+        q[5] += a * t2 * t2;
       } else {
-        Q += Bk.transpose() * Bk / weight(k);
+        q[0] += ic * (b0 * b0 + b1 * b1);
+        q[1] += ic * (b0 * b2 + b1 * b3);
+        q[2] += ic * (b0 * b4 + b1 * b5);
+        q[3] += ic * (b2 * b2 + b3 * b3);
+        q[4] += ic * (b2 * b4 + b3 * b5);
+        q[5] += ic * (b4 * b4 + b5 * b5);
       }
     }
+    Q(0, 0) += q[0];
+    Q(0, 1) += q[1];
+    Q(0, 2) += q[2];
+    Q(1, 1) += q[3];
+    Q(1, 2) += q[4];
+    Q(2, 2) += q[5];
+    Q(1, 0) = Q(0, 1);
+    Q(2, 0) = Q(0, 2);
+    Q(2, 1) = Q(1, 2);
   }
   const double tr = Q.trace();
   if (!(tr > 0.0)) {
