@@ -931,8 +931,11 @@ FinishSums Solver<kLoaded>::finish_pass(const Eigen::Vector3d& y, const Dual& du
   const double* c = frame_.coulomb.weight.data();
   const double* ic2 = frame_.coulomb.inv_weight2.data();
   const Eigen::Index n = frame_.legs();
+  double* const lam = frame_.work_2n.data();
+  double* const force = frame_.Fxy.data();
   const double y0 = y(0), y1 = y(1), y2 = y(2);
   const double p0 = dual.p(0), p1 = dual.p(1), p2 = dual.p(2);
+  const double mu0 = mu(0), mu1 = mu(1), mu2 = mu(2);
   A2 primal = A2::Zero(), stepped = A2::Zero(), value = A2::Zero(), lmax2 = A2::Zero();
   A2 fx = A2::Zero(), fy = A2::Zero(), mz = A2::Zero();
   A2 q00 = A2::Zero(), q01 = A2::Zero(), q02 = A2::Zero();
@@ -968,6 +971,11 @@ FinishSums Solver<kLoaded>::finish_pass(const Eigen::Vector3d& y, const Dual& du
     q11 += wt1 * t1;
     q12 += wt1 * t2;
     q22 += w * t2 * t2;
+    // The lanes whose candidate this loop builds (weight 1; 0 for no foot, and for the feet
+    // whose λ is given in work_2n: static ones and the kink foot, added after the loop from
+    // there — a blend by weight, not a per-lane branch, and a stale λ of a sliding foot is
+    // never read).
+    A2 use = m;
     A2 l0;
     A2 l1;
     if constexpr (kPath) {
@@ -975,39 +983,59 @@ FinishSums Solver<kLoaded>::finish_pass(const Eigen::Vector3d& y, const Dual& du
       l0 = r0 * ir;
       l1 = r1 * ir;
     } else {
+      const A2 lane(static_cast<double>(j - dual.kink), static_cast<double>(j + 1 - dual.kink));
+      use = ms * lane.abs().min(1.0);
       const A2 tp = (t0 * p0 + t1 * p1 + t2 * p2) * inr;
-      const A2 given0(frame_.work_2n(0, j), frame_.work_2n(0, j1));
-      const A2 given1(frame_.work_2n(1, j), frame_.work_2n(1, j1));
-      const A2 lane(static_cast<double>(j), static_cast<double>(j + 1));
-      const auto lin = ms > 0.0 && lane != static_cast<double>(dual.kink);
-      l0 = lin.select(n0 - n1 * tp, given0);
-      l1 = lin.select(n1 + n0 * tp, given1);
+      l0 = n0 - n1 * tp;
+      l1 = n1 + n0 * tp;
     }
-    l0 = m * (l0 - (b0 * mu(0) + b2 * mu(1) + b4 * mu(2)));
-    l1 = m * (l1 - (b1 * mu(0) + b3 * mu(1) + b5 * mu(2)));
-    lmax2 = lmax2.max(l0 * l0 + l1 * l1);
-    value += l0 * d0 + l1 * d1;
-    const A2 F0 = -(b0 * l0 + b2 * l1);
-    const A2 F1 = -(b1 * l0 + b3 * l1);
+    const A2 c0 = use * (l0 - (b0 * mu0 + b2 * mu1 + b4 * mu2));
+    const A2 c1 = use * (l1 - (b1 * mu0 + b3 * mu1 + b5 * mu2));
+    lmax2 = lmax2.max(c0 * c0 + c1 * c1);
+    value += c0 * d0 + c1 * d1;
+    const A2 F0 = -(b0 * c0 + b2 * c1);
+    const A2 F1 = -(b1 * c0 + b3 * c1);
     fx += F0;
     fy += F1;
     const A2 qx(frame_.q(0, j), frame_.q(0, j1));
     const A2 qy(frame_.q(1, j), frame_.q(1, j1));
     mz += qx * F1 - qy * F0;
     for (Eigen::Index i = 0; i < 2 && j + i < n; ++i) {
-      frame_.work_2n(0, j + i) = l0(i);
-      frame_.work_2n(1, j + i) = l1(i);
-      frame_.Fxy(0, j + i) = F0(i);
-      frame_.Fxy(1, j + i) = F1(i);
+      if (use(i) == 0.0 && m(i) != 0.0) {
+        continue;  // a given λ, written after the loop
+      }
+      lam[2 * (j + i)] = c0(i);
+      lam[2 * (j + i) + 1] = c1(i);
+      force[2 * (j + i)] = F0(i);
+      force[2 * (j + i) + 1] = F1(i);
     }
   }
   FinishSums out;
+  if constexpr (!kPath) {
+    // The given λ_k (static feet, the kink foot), balanced like the others.
+    double lm2 = 0.0;
+    for (int k = 0; k < frame_.legs(); ++k) {
+      if (state(k) != kStatic && k != dual.kink) {
+        continue;
+      }
+      const Mat23 Bk = B(k);
+      const Eigen::Vector2d l = Eigen::Vector2d(frame_.work_2n.col(k)) - Bk * mu;
+      const Eigen::Vector2d F = -(Bk.leftCols<2>() * l);
+      lm2 = std::max(lm2, l.squaredNorm());
+      out.value += l.dot(d(k));
+      out.force += F;
+      out.moment += frame_.q(0, k) * F(1) - frame_.q(1, k) * F(0);
+      frame_.work_2n.col(k) = l;
+      frame_.Fxy.col(k) = F;
+    }
+    out.lmax2 = lm2;
+  }
   out.primal = primal.sum();
   out.stepped = stepped.sum();
-  out.value = value.sum();
-  out.lmax2 = lmax2.maxCoeff();
-  out.force << fx.sum(), fy.sum();
-  out.moment = mz.sum();
+  out.value += value.sum();
+  out.lmax2 = std::max(out.lmax2, lmax2.maxCoeff());
+  out.force += Eigen::Vector2d(fx.sum(), fy.sum());
+  out.moment += mz.sum();
   const double qs[6] = {q00.sum(), q01.sum(), q02.sum(), q11.sum(), q12.sum(), q22.sum()};
   std::copy(qs, qs + 6, out.q);
   return out;
@@ -1036,8 +1064,8 @@ void Solver<kLoaded>::finish(Eigen::Vector3d y, const Dual& dual) {
       ++n_static;
       if (first < 0) {
         first = k;
-      } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).norm() >
-                 1e-6 * cs_.L) {
+      } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).squaredNorm() >
+                 1e-12 * cs_.L * cs_.L) {
         distinct = true;
       }
     }
@@ -1207,21 +1235,49 @@ template <bool kLoaded>
 template <bool kLoaded>
 bool Solver<kLoaded>::flat_direction(Eigen::Matrix3d Q, int n_static) const {
   if (n_static > 0) {
+    // Scalar sums read off the rows (small Eigen sums stall on store forwarding): t tᵀ/c_k with
+    // t = B_kᵀ n⊥ (n = λ_k/‖λ_k‖) on the rim, B_kᵀB_k/c_k inside.
+    const contact::CoulombScratch& R = frame_.coulomb;
+    double q[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     for (int k = 0; k < frame_.legs(); ++k) {
       if (state(k) != kStatic) {
         continue;
       }
-      const Eigen::Vector2d lam = frame_.work_2n.col(k);
-      const double nl = lam.norm();
-      const Mat23 Bk = B(k);
+      const double l0 = frame_.work_2n(0, k);
+      const double l1 = frame_.work_2n(1, k);
+      const double nl = std::sqrt(l0 * l0 + l1 * l1);
+      const double b0 = R.B(0, k), b1 = R.B(1, k), b2 = R.B(2, k);
+      const double b3 = R.B(3, k), b4 = R.B(4, k), b5 = R.B(5, k);
+      const double ic = 1.0 / weight(k);
       if (nl >= 1.0 - 1e-9) {
-        const Eigen::Vector2d np(-lam(1) / nl, lam(0) / nl);
-        const Eigen::Vector3d t = Bk.transpose() * np;
-        Q += t * t.transpose() / weight(k);
+        const double a = ic / (nl * nl);  // t = B_kᵀ(−λ₁, λ₀)/‖λ‖
+        const double t0 = b1 * l0 - b0 * l1;
+        const double t1 = b3 * l0 - b2 * l1;
+        const double t2 = b5 * l0 - b4 * l1;
+        q[0] += a * t0 * t0;
+        q[1] += a * t0 * t1;
+        q[2] += a * t0 * t2;
+        q[3] += a * t1 * t1;
+        q[4] += a * t1 * t2;
+        q[5] += a * t2 * t2;
       } else {
-        Q += Bk.transpose() * Bk / weight(k);
+        q[0] += ic * (b0 * b0 + b1 * b1);
+        q[1] += ic * (b0 * b2 + b1 * b3);
+        q[2] += ic * (b0 * b4 + b1 * b5);
+        q[3] += ic * (b2 * b2 + b3 * b3);
+        q[4] += ic * (b2 * b4 + b3 * b5);
+        q[5] += ic * (b4 * b4 + b5 * b5);
       }
     }
+    Q(0, 0) += q[0];
+    Q(0, 1) += q[1];
+    Q(0, 2) += q[2];
+    Q(1, 1) += q[3];
+    Q(1, 2) += q[4];
+    Q(2, 2) += q[5];
+    Q(1, 0) = Q(0, 1);
+    Q(2, 0) = Q(0, 2);
+    Q(2, 1) = Q(1, 2);
   }
   const double tr = Q.trace();
   if (!(tr > 0.0)) {

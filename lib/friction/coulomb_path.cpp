@@ -176,22 +176,45 @@ double Solver<kLoaded>::polish_bound(const Eigen::Vector3d& y, const Sums& S,
 
 template <bool kLoaded>
 StaticDual Solver<kLoaded>::static_duals(const Eigen::Vector3d& y, const Eigen::Vector3d& gp) {
-  StaticDual st;
+  // Scalar sums read off the rows, as in polish().
+  const contact::CoulombScratch& R = frame_.coulomb;
+  const double share = 1.0 / c_static_;
+  double lmax2 = 0.0;
+  double value = 0.0;
+  double primal = 0.0;
+  double f0 = 0.0;
+  double f1 = 0.0;
+  double f2 = 0.0;
   for (int k = 0; k < frame_.legs(); ++k) {
     if (state(k) != kStatic) {
       continue;
     }
-    const Mat23 Bk = B(k);
-    // B_k,xy = c_k W_k is symmetric positive definite (W_k ⪰ I): its closed-form inverse
-    // (one division) in place of an LU, on the path of every polish step.
-    const Eigen::Vector2d lam =
-        Bk.leftCols<2>().inverse() * Eigen::Vector2d(-(weight(k) / c_static_) * gp.head<2>());
-    frame_.work_2n.col(k) = lam;
-    st.lmax = std::max(st.lmax, lam.norm());
-    st.value += lam.dot(d(k));
-    st.force += Bk.transpose() * lam;
-    st.primal += residual(k, y).norm();
+    const double b0 = R.B(0, k), b1 = R.B(1, k), b2 = R.B(2, k);
+    const double b3 = R.B(3, k), b4 = R.B(4, k), b5 = R.B(5, k);
+    const double d0 = R.d(0, k), d1 = R.d(1, k);
+    // B_k,xy = c_k W_k is symmetric positive definite (W_k ⪰ I): λ = −B_k,xy⁻¹ (c_k/Σ_S c) g'_xy
+    // by its closed-form inverse (one division), on the path of every polish step.
+    const double a = -weight(k) * share / (b0 * b3 - b2 * b1);
+    const double g0 = a * gp(0);
+    const double g1 = a * gp(1);
+    const double l0 = b3 * g0 - b2 * g1;
+    const double l1 = b0 * g1 - b1 * g0;
+    frame_.work_2n(0, k) = l0;
+    frame_.work_2n(1, k) = l1;
+    lmax2 = std::max(lmax2, l0 * l0 + l1 * l1);
+    value += l0 * d0 + l1 * d1;
+    f0 += b0 * l0 + b1 * l1;
+    f1 += b2 * l0 + b3 * l1;
+    f2 += b4 * l0 + b5 * l1;
+    const double r0 = b0 * y(0) + b2 * y(1) + b4 * y(2) + d0;
+    const double r1 = b1 * y(0) + b3 * y(1) + b5 * y(2) + d1;
+    primal += std::sqrt(r0 * r0 + r1 * r1);
   }
+  StaticDual st;
+  st.lmax = std::sqrt(lmax2);
+  st.value = value;
+  st.primal = primal;
+  st.force << f0, f1, f2;
   return st;
 }
 
@@ -344,10 +367,12 @@ bool Solver<kLoaded>::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
   int n_static = 0;
   int first = -1;
   bool one_point = true;
-  Eigen::Matrix3d MS = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d bS = Eigen::Vector3d::Zero();
-  Eigen::Matrix2d GS = Eigen::Matrix2d::Zero();
-  Eigen::Vector2d hS = Eigen::Vector2d::Zero();
+  // Σ_S B_kᵀB_k (upper triangle 00 01 02 11 12 22) and Σ_S B_kᵀd_k in scalars, read off the
+  // rows (small Eigen sums here stall on store forwarding); their xy blocks are Σ_S G and h_S.
+  const contact::CoulombScratch& R = frame_.coulomb;
+  double ms[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  double bs[3] = {0.0, 0.0, 0.0};
+  const double apart2 = 1e-12 * cs_.L * cs_.L;  // (1e-6 L)²: distinct static points
   c_static_ = 0.0;
   for (int k = 0; k < frame_.legs(); ++k) {
     if (state(k) != kStatic) {
@@ -356,19 +381,32 @@ bool Solver<kLoaded>::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
     ++n_static;
     if (first < 0) {
       first = k;
-    } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).norm() > 1e-6 * cs_.L) {
+    } else if ((frame_.q.col(k).head<2>() - frame_.q.col(first).head<2>()).squaredNorm() > apart2) {
       one_point = false;
     }
-    const Mat23 Bk = B(k);
-    const Eigen::Vector2d r = residual(k, y);
-    const double rho = std::sqrt(r.squaredNorm() + delta * delta);
-    frame_.work_2n.col(k) = delta > 0.0 ? Eigen::Vector2d(r / rho) : Eigen::Vector2d::Zero();
-    MS += Bk.transpose() * Bk;
-    bS += Bk.transpose() * d(k);
-    GS += Bk.leftCols<2>().transpose() * Bk.leftCols<2>();
-    hS += Bk.leftCols<2>().transpose() * d(k);
+    if (delta > 0.0) {
+      const Eigen::Vector2d r = residual(k, y);
+      frame_.work_2n.col(k) = r / std::sqrt(r.squaredNorm() + delta * delta);
+    } else {
+      frame_.work_2n.col(k).setZero();
+    }
+    const double b0 = R.B(0, k), b1 = R.B(1, k), b2 = R.B(2, k);
+    const double b3 = R.B(3, k), b4 = R.B(4, k), b5 = R.B(5, k);
+    const double d0 = R.d(0, k), d1 = R.d(1, k);
+    ms[0] += b0 * b0 + b1 * b1;
+    ms[1] += b0 * b2 + b1 * b3;
+    ms[2] += b0 * b4 + b1 * b5;
+    ms[3] += b2 * b2 + b3 * b3;
+    ms[4] += b2 * b4 + b3 * b5;
+    ms[5] += b4 * b4 + b5 * b5;
+    bs[0] += b0 * d0 + b1 * d1;
+    bs[1] += b2 * d0 + b3 * d1;
+    bs[2] += b4 * d0 + b5 * d1;
     c_static_ += weight(k);
   }
+  Eigen::Matrix3d MS;
+  MS << ms[0], ms[1], ms[2], ms[1], ms[3], ms[4], ms[2], ms[4], ms[5];
+  const Eigen::Vector3d bS(bs[0], bs[1], bs[2]);
   int dim = 3;
   Eigen::Vector3d e = Eigen::Vector3d::Zero();
   detail::Psd3 static_solver;
@@ -378,7 +416,7 @@ bool Solver<kLoaded>::polish(Eigen::Vector3d& y, double delta, Dual& dual) {
     dim = 1;
     const Mat23 Bf = B(first);
     const Eigen::Vector2d sp = Bf.leftCols<2>().inverse() * Eigen::Vector2d(Bf.col(2));
-    y.head<2>() = -(GS.inverse() * hS) - y(2) * sp;
+    y.head<2>() = -(MS.topLeftCorner<2, 2>().inverse() * bS.head<2>()) - y(2) * sp;
     e = Eigen::Vector3d(-sp(0), -sp(1), 1.0).normalized();
   } else if (n_static > 0) {
     // Two or more distinct static points fix y; feet that then do not slip either (a rigid

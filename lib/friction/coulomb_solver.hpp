@@ -160,6 +160,8 @@ class Solver {
   bool hold_over(const std::array<int, kHeldMax>& held, int n_held, const Eigen::Vector3d& y);
 
   // ---- passes over the feet: two feet per step, Eigen::Array2d being one SSE2 register -----
+  // The long passes are [[gnu::flatten]]: GCC's inlining budget otherwise leaves some of their
+  // two-lane Eigen expressions as out-of-line calls, whose spills cost a third of the pass.
   // A foot a pass does not visit (mask 0) gets ρ ≥ 1 (finite) and the weight 0 in every sum.
   // The row pointers are read once: the stores to the row r2 would otherwise make the compiler
   // reload them for every pair of feet.
@@ -220,7 +222,7 @@ class Solver {
     }
   }
   template <bool kAll, bool kSmooth>
-  void assemble(const Eigen::Vector3d& y, double d2, Sums& S) {
+  [[gnu::flatten]] void assemble(const Eigen::Vector3d& y, double d2, Sums& S) {
     const Rows R = rows(kAll);
     const double y0 = y(0), y1 = y(1), y2 = y(2);
     A2 f = A2::Zero(), inv = A2::Zero(), rho_max = A2::Zero(), r2_min = A2::Constant(kInf);
@@ -371,11 +373,12 @@ class Solver {
   /// work_2n for static ones and the kink foot), balanced (λ_k −= B_k μ) and written back to
   /// work_2n, the forces F_k = −B_k,xy λ_k to Fxy (unscaled), and the sums.
   template <bool kPath>
-  FinishSums finish_pass(const Eigen::Vector3d& y, const Dual& dual, const Eigen::Vector3d& mu);
+  [[gnu::flatten]] FinishSums finish_pass(const Eigen::Vector3d& y, const Dual& dual,
+                                          const Eigen::Vector3d& mu);
   /// The answer from a point y and a dual candidate: one pass (finish_pass) builds, balances and
   /// writes the forces, which are then scaled into the disks; the reported velocity is the Newton
   /// point y + p unless D is higher there, and the certificate is the candidate's exact gap.
-  void finish(Eigen::Vector3d y, const Dual& dual);
+  [[gnu::flatten]] void finish(Eigen::Vector3d y, const Dual& dual);
   /// Whether D has a flat direction at the optimum (coulomb.cpp, non-uniqueness), given the sliding
   /// feet's part of Q and the certified dual λ in work_2n.
   bool flat_direction(Eigen::Matrix3d Q, int n_static) const;
@@ -425,7 +428,7 @@ class Solver {
   /// Active-set polish from y (a point of the smoothing path at δ) with the static feet marked
   /// in work_idx. On success (relative gap ≤ tol) y and `dual` are the certified pair (static
   /// feet's λ in work_2n).
-  bool polish(Eigen::Vector3d& y, double delta, Dual& dual);
+  [[gnu::flatten]] bool polish(Eigen::Vector3d& y, double delta, Dual& dual);
   /// The dual when two or more distinct static points fix y (no Newton step): unit directions
   /// for sliding feet, least-norm balancing forces for static ones, fitted into their disks.
   bool fixed_point_dual(const Eigen::Vector3d& y, const Sums& S, const detail::Psd3& static_solver,
