@@ -973,8 +973,7 @@ FinishSums Solver<kLoaded>::finish_pass(const Eigen::Vector3d& y, const Dual& du
     q22 += w * t2 * t2;
     // The lanes whose candidate this loop builds (weight 1; 0 for no foot, and for the feet
     // whose λ is given in work_2n: static ones and the kink foot, added after the loop from
-    // there — a blend by weight, not a per-lane branch, and a stale λ of a sliding foot is
-    // never read).
+    // there, so that a stale λ of a sliding foot is never read).
     A2 use = m;
     A2 l0;
     A2 l1;
@@ -989,8 +988,9 @@ FinishSums Solver<kLoaded>::finish_pass(const Eigen::Vector3d& y, const Dual& du
       l0 = n0 - n1 * tp;
       l1 = n1 + n0 * tp;
     }
-    const A2 c0 = use * (l0 - (b0 * mu0 + b2 * mu1 + b4 * mu2));
-    const A2 c1 = use * (l1 - (b1 * mu0 + b3 * mu1 + b5 * mu2));
+    // A select, not use · (…): the kink foot may sit exactly at r = 0, where n = r/‖r‖ is NaN.
+    const A2 c0 = (use > 0.0).select(l0 - (b0 * mu0 + b2 * mu1 + b4 * mu2), 0.0);
+    const A2 c1 = (use > 0.0).select(l1 - (b1 * mu0 + b3 * mu1 + b5 * mu2), 0.0);
     lmax2 = lmax2.max(c0 * c0 + c1 * c1);
     value += c0 * d0 + c1 * d1;
     const A2 F0 = -(b0 * c0 + b2 * c1);

@@ -13,6 +13,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "contact/robot.hpp"
@@ -128,6 +129,39 @@ int check_walk(const robots::Walker& walker, int count) {
 TEST(CoulombForces, AlongATurningWalkTheForcesAreTheLawsToTheCertificate) {
   const robots::Walker walker = robots::bigant_tripod({.frequency = 0.38, .steer = 0.3});
   EXPECT_GT(check_walk(walker, 600), 300);  // static feet held over in most frames
+}
+
+TEST(CoulombForces, FeetOnALineWithAFootAtItsKinkGiveTheMedianIntervalAndFiniteForces) {
+  // Fig. 3.1's 1-D example in 2-D (sweeps/points/legged_laws.cpp): N feet on the body's x axis,
+  // equal loads, foot i sliding at (v_i, 0). Coulomb balances at v_x = −median(v_i); for even N
+  // anywhere between minus the two middle speeds, where the solver ends with a foot exactly at
+  // its kink (r = 0): its slip direction is 0/0, and no NaN of it may reach the forces.
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> speed(-1.0, 1.0);
+  for (const int n : {2, 3, 4, 6, 8, 10, 32}) {
+    const Robot robot = contact::uniform_robot(n);
+    Frame f(robot);
+    for (int i = 0; i < n; ++i) {
+      f.q.col(i) = Eigen::Vector3d(-1.0 + 2.0 * i / (n - 1), 0.0, -0.1);
+      f.contact[static_cast<std::size_t>(i)] = 1;
+      f.Fz(i) = robot.Mg / n;
+    }
+    for (int trial = 0; trial < 60; ++trial) {
+      std::vector<double> v(static_cast<std::size_t>(n));
+      for (int i = 0; i < n; ++i) {
+        v[static_cast<std::size_t>(i)] = speed(rng);
+        f.qdot.col(i) = Eigen::Vector3d(v[static_cast<std::size_t>(i)], 0.0, 0.0);
+      }
+      std::sort(v.begin(), v.end());
+      const std::size_t h = v.size() / 2;
+      const double lo = -v[h];
+      const double hi = n % 2 == 1 ? -v[h] : -v[h - 1];
+      solve_coulomb(robot, f, CoulombOptions{kTol});
+      expect_law(robot, f, "line", trial);
+      EXPECT_GE(f.v_body(0), lo - 1e-7) << n << " feet, trial " << trial;
+      EXPECT_LE(f.v_body(0), hi + 1e-7) << n << " feet, trial " << trial;
+    }
+  }
 }
 
 TEST(CoulombForces, WithAnisotropicFeetTheForcesAreTheLawsToTheCertificate) {
