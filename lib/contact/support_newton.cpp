@@ -98,7 +98,7 @@ struct Cell {
 // The sums of one pass, per lane. Ten accumulators: with the temporaries of a step they fit the
 // sixteen vector registers of x86-64, where an eleventh (the count of feet near their plane) was
 // kept in memory and put a store and a load on the loop's critical path; that count is needed
-// only where a pass may certify, and has a pass of its own there (near_plane()).
+// only where a pass may certify, and is taken with the outputs there (loads_unless_near()).
 struct Sums {
   using V = Lanes<4>::V;
   V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes{};
@@ -164,18 +164,26 @@ struct Sums {
   return c;
 }
 
-// Whether a foot is within kNearPlane × the heights' rounding error (Rows::noise) of its plane at
-// v, either side (h² ≤ margin², no abs needed); the padding feet are far above.
-[[gnu::always_inline]] inline bool near_plane(const Rows& R, const Eigen::Vector3d& v) {
+// The outputs at a certified v, four feet at a time: the contact flags of the last pass and
+// the loads of eq. 3.7, F_z = −K h. Returns whether a foot is within kNearPlane × the heights'
+// rounding error (Rows::noise) of its plane, either side (h² ≤ margin², no abs needed; the
+// padding feet are far above): then the outputs are the path search's to write over. (Plain
+// pointers: a store through char* may alias anything, and through the frame's members it would
+// reload every pointer at every foot.)
+[[gnu::always_inline]] inline bool loads_unless_near(const Rows& R, const Eigen::Vector3d& v,
+                                                     Eigen::Index n, char* contact, double* Fz) {
   using L = Lanes<4>;
   using V = L::V;
   const double margin = kNearPlane * R.noise(v);
   L::M near{};
-  for (Eigen::Index j = 0; j < R.cols; j += 4) {
+  for (Eigen::Index j = 0; j < n; j += 4) {
     const V h = L::load(R.in[kY] + j) * L::splat(v(0)) +
                 L::load(R.in[kMinusX] + j) * L::splat(v(1)) +
                 (L::load(R.in[kQz] + j) + L::splat(v(2)));
     near |= h * h <= L::splat(margin * margin);
+    const L::M on = L::load(R.on + j) != L::splat(0.0);
+    core::store_flags(contact, n, j, on);
+    core::store_padded(Fz, n, j, L::select(on, -L::load(R.in[kK] + j) * h));
   }
   return (near[0] | near[1] | near[2] | near[3]) != 0;
 }
@@ -409,26 +417,13 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     }
     const double r = residual(cell, inv_mg, il);
     if (r <= kPolished || (r >= 0.5 * last && r <= kRoundingCap)) {
-      if (near_plane(R, v)) {
+      // ---- certified: the outputs, with the loads of eq. 3.7 -------------------------------
+      if (loads_unless_near(R, v, n, frame.contact.data(), frame.Fz.data())) {
         return false;  // not strictly complementary: let Alg. 1 handle the tie
       }
-      // ---- certified: the outputs, with the loads of eq. 3.7 -------------------------------
       frame.alpha = v(0);
       frame.beta = v(1);
       frame.z = v(2);
-      // Four feet at a time (plain pointers: a store through char* may alias anything, and
-      // through the frame's members it would reload every pointer at every foot).
-      char* const contact = frame.contact.data();
-      double* const Fz = frame.Fz.data();
-      using Four = Lanes<4>;
-      for (Eigen::Index j = 0; j < n; j += 4) {
-        const Four::V h = Four::load(row[kY] + j) * Four::splat(v(0)) +
-                          Four::load(row[kMinusX] + j) * Four::splat(v(1)) +
-                          (Four::load(row[kQz] + j) + Four::splat(v(2)));
-        const Four::M on = Four::load(row[kOn] + j) != Four::splat(0.0);
-        core::store_flags(contact, n, j, on);
-        core::store_padded(Fz, n, j, Four::select(on, -Four::load(row[kK] + j) * h));
-      }
       summary.status = SupportSummary::Status::kBalanced;
       summary.route = SupportSummary::Route::kNewton;
       summary.iterations = static_cast<int>(changes);

@@ -12,8 +12,9 @@ namespace slipwalk::contact::detail {
 /// minimizer is unique and equals the end of Alg. 1's path. Then frame.alpha, beta, z, contact,
 /// Fz and support.residual, iterations, newton_steps, route are written (status kBalanced).
 /// Returns false otherwise (a cell with fewer than three contacts off a line, a cycling contact
-/// set, too many steps): frame.support.newton_steps says how far it got, the other outputs are
-/// left to the path search. Uses frame.support_newton as scratch; does not allocate.
+/// set, too many steps, a foot at its plane at the end): frame.support.newton_steps says how far it
+/// got; contact and Fz may be written, and all outputs are the path search's to write. Uses
+/// frame.support_newton as scratch; does not allocate.
 bool support_by_newton(const Robot& robot, Frame& frame);
 
 }  // namespace slipwalk::contact::detail
