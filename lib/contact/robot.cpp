@@ -87,7 +87,7 @@ SupportNewtonScratch::SupportNewtonScratch(int legs)
       minus_qx(FootRow::Zero(padded_feet(legs))),
       qz(FootRow::Zero(padded_feet(legs))),
       K(FootRow::Zero(padded_feet(legs))),
-      on(FootRow::Zero(padded_feet(legs))) {}
+      on(FootFlags::Zero(padded_feet(legs))) {}
 
 CoulombScratch::CoulombScratch(int legs)
     : B(FootRows<6>::Zero(6, padded_pairs(legs))),

@@ -9,6 +9,7 @@
 // height above the ground is  h_j = −β q_x,j + α q_y,j + q_z,j + z  (eq. 3.6); h_j < 0 means the
 // foot's spring is compressed and it is in contact.
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -137,6 +138,9 @@ using FootRow = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor>;
 template <int kRows>
 using FootRows = Eigen::Matrix<double, kRows, Eigen::Dynamic, Eigen::RowMajor>;
 
+/// One 64-bit flag per foot, a pass's lane mask (core::Lanes<4>::M) stored as it is.
+using FootFlags = Eigen::Matrix<std::int64_t, 1, Eigen::Dynamic, Eigen::RowMajor>;
+
 /// N rounded up to a multiple of four: the column count of FootRow and FootRows.
 [[nodiscard]] constexpr int padded_feet(int legs) { return (legs + 3) / 4 * 4; }
 /// N rounded up to even: the column count of the Coulomb solver's rows (CoulombScratch), whose
@@ -152,7 +156,8 @@ struct SupportNewtonScratch {
   FootRow minus_qx;  ///< −q_x,j, m: the coefficient of β in h_j
   FootRow qz;        ///< q_z,j, m
   FootRow K;         ///< K_j, N/m
-  FootRow on;        ///< 1.0 where foot j was in contact (h_j < 0) at the last pass, else 0.0
+  FootFlags on;      ///< all ones (−1) where foot j was in contact (h_j < 0) at the last pass,
+                     ///< else 0: the pass's lane mask as it is
 
   /// Whether every row has the same count of columns, a multiple of four, at least `legs`.
   [[nodiscard]] bool holds(int legs) const {

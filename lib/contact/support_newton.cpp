@@ -67,16 +67,16 @@ constexpr double kAboveGround = 1e300;
 constexpr double kFlatTilt = 1e-12;
 
 // The rows of frame.support_newton in the order the passes index them: the feet's a_j, q_z,j and
-// K_j, and the contact flags (1.0 / 0.0) of the last pass.
-enum Row : int { kY = 0, kMinusX, kQz, kK, kOn, kRows };
+// K_j (the contact flags of the last pass, lane masks, are a row of their own: Rows::on).
+enum Row : int { kY = 0, kMinusX, kQz, kK, kRows };
 
 // One pass handles four feet at a time in core::Lanes (an AVX2 clone of support_by_newton where
 // the CPU has it, else pairs of SSE2 registers: the same rounding).
 using core::Lanes;
 
 struct Rows {
-  const double* in[kOn];
-  double* on;
+  const double* in[kRows];
+  std::int64_t* on;
   Eigen::Index cols;
   Eigen::Vector3d size;  // max |q_y|, max |q_x|, max |q_z| over the feet
   // The rounding error of every foot's height at v: h_j = a_j·v + q_z,j is computed to about
@@ -101,7 +101,8 @@ struct Cell {
 // only where a pass may certify, and is taken with the outputs there (loads_unless_near()).
 struct Sums {
   using V = Lanes<4>::V;
-  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{}, changes{};
+  V k{}, y{}, x{}, yy{}, yx{}, xx{}, gy{}, gx{}, gz{};
+  Lanes<4>::M changes{};  // minus the count of feet whose flag changed (integer lanes)
 };
 
 // Adds feet j … j + 3 with weights w (K_j on the cell, else 0) and heights h to the sums.
@@ -143,15 +144,13 @@ struct Sums {
   const V x = L::load(R.in[kMinusX] + j);
   const V h = y * L::splat(v(0)) + x * L::splat(v(1)) + (L::load(R.in[kQz] + j) + L::splat(v(2)));
   const L::M touching = h < L::splat(threshold);
-  const V on = L::select(touching, L::splat(1.0));
-  const V d = on - L::load(R.on + j);
-  s.changes += d * d;
-  L::store(R.on + j, on);
+  s.changes += touching ^ L::load(R.on + j);  // −1 where the flag changed
+  L::store(R.on + j, touching);
   accumulate(s, L::select(touching, L::load(R.in[kK] + j)), y, x, h);
 }
 
 // One pass over the feet at v, four at a time: the feet with h_j < threshold (by default −noise,
-// Rows::noise: the outputs' contact convention) make the cell; their flags are stored in row kOn
+// Rows::noise: the outputs' contact convention) make the cell; their flags are stored in Rows::on
 // and compared with the previous ones.
 [[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg,
                                         double threshold) {
@@ -160,7 +159,7 @@ struct Sums {
     add_feet(R, j, v, threshold, s);
   }
   Cell c = cell_of(s, Mg);
-  c.changes = Lanes<4>::sum(s.changes);
+  c.changes = -static_cast<double>(s.changes[0] + s.changes[1] + s.changes[2] + s.changes[3]);
   return c;
 }
 
@@ -181,7 +180,7 @@ struct Sums {
                 L::load(R.in[kMinusX] + j) * L::splat(v(1)) +
                 (L::load(R.in[kQz] + j) + L::splat(v(2)));
     near |= h * h <= L::splat(margin * margin);
-    const L::M on = L::load(R.on + j) != L::splat(0.0);
+    const L::M on = L::load(R.on + j);
     core::store_flags(contact, n, j, on);
     core::store_padded(Fz, n, j, L::select(on, -L::load(R.in[kK] + j) * h));
   }
@@ -237,7 +236,7 @@ Eigen::Vector3d null_part(const Rows& R, int n, const Cell& cell, const Eigen::V
   int count = 0;
   int on[2] = {-1, -1};
   for (int j = 0; j < n; ++j) {
-    if (R.on[j] != 0.0) {
+    if (R.on[j] != 0) {
       if (count < 2) {
         on[count] = j;
       }
@@ -299,7 +298,7 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
     double t = kInf;
     int first = -1;
     for (int j = 0; j < n; ++j) {
-      if (R.on[j] != 0.0) {
+      if (R.on[j] != 0) {
         continue;
       }
       const double r = R.in[kY][j] * d(0) + R.in[kMinusX][j] * d(1) + d(2);
@@ -330,8 +329,9 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
 // column-major (core::load_columns3). Also the largest |q_y|, |q_x|, |q_z| (Rows::size) and q_x² +
 // q_y² over the feet.
 [[gnu::always_inline]] inline Sums rows_and_start(const Robot& robot, const Frame& frame,
-                                                  double* const* row, Eigen::Index cols,
-                                                  Eigen::Vector3d& size, double& size2) {
+                                                  double* const* row, std::int64_t* on,
+                                                  Eigen::Index cols, Eigen::Vector3d& size,
+                                                  double& size2) {
   using L = Lanes<4>;
   using V = L::V;
   const Eigen::Index n = frame.q.cols();
@@ -358,7 +358,7 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
     L::store(row[kMinusX] + j, minus_x);
     L::store(row[kQz] + j, z_row);
     L::store(row[kK] + j, k);
-    L::store(row[kOn] + j, L::select(k > L::splat(0.0), L::splat(1.0)));
+    L::store(on + j, k > L::splat(0.0));
     max_y = max_y < abs(y) ? abs(y) : max_y;
     max_x = max_x < abs(x) ? abs(x) : max_x;
     max_z = max_z < abs(z) ? abs(z) : max_z;
@@ -385,15 +385,15 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
   }
   const Eigen::Index cols = W.qy.cols();
   // ---- the feet as rows, and the all-feet cell at v = 0, in one pass ------------------------
-  double* const row[kRows] = {W.qy.data(), W.minus_qx.data(), W.qz.data(), W.K.data(), W.on.data()};
+  double* const row[kRows] = {W.qy.data(), W.minus_qx.data(), W.qz.data(), W.K.data()};
   Eigen::Vector3d size;
   double size2 = 0.0;
-  const Sums start = rows_and_start(robot, frame, row, cols, size, size2);
+  const Sums start = rows_and_start(robot, frame, row, W.on.data(), cols, size, size2);
   const double L = size2 > 0.0 ? std::sqrt(size2) : 1.0;
   const double il = 1.0 / L;
   const double Mg = robot.Mg;
   const double inv_mg = 1.0 / Mg;
-  const Rows R{{row[kY], row[kMinusX], row[kQz], row[kK]}, row[kOn], cols, size};
+  const Rows R{{row[kY], row[kMinusX], row[kQz], row[kK]}, W.on.data(), cols, size};
 
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;

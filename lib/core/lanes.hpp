@@ -47,6 +47,12 @@ struct Lanes {
     return v;
   }
   static void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
+  static M load(const std::int64_t* p) {
+    M m;
+    std::memcpy(&m, p, sizeof m);
+    return m;
+  }
+  static void store(std::int64_t* p, M m) { std::memcpy(p, &m, sizeof m); }
   static V splat(double x) { return V{} + x; }
   static V select(M mask, V x) { return std::bit_cast<V>(std::bit_cast<M>(x) & mask); }
   static double sum(V v) {
