@@ -49,31 +49,33 @@ import peer_speedup as ps  # noqa: E402
 # per instruction) or "avx2" (the support's four-wide vector code in its AVX2 clone; pairs of SSE2
 # registers where the CPU has no AVX2).
 FLOPS = {
-    # lib/contact/support_newton.cpp add_feet<true> (the start pass, all feet in): h = y v0 +
-    # x v1 + (q_z + v2) (2 × and 3 +: 5); w y, w x, w h (3); k, y, x += (3); yy, yx, xx, gy, gx
-    # += (w·) · (2 each: 10); gz += w h (1): 22.
-    "support_start_pass": {"flops": 22, "per": "foot", "width": "avx2"},
-    # add_feet<false>, each Newton step's pass: the start pass's 22, plus d = on − on_prev and
-    # changes += d d (3), near += select(h h ≤ margin²) (h h and the add: 2): 27.
-    "support_newton_pass": {"flops": 27, "per": "foot", "width": "avx2"},
-    # support_by_newton's scalar loops: the rows (q_x² + q_y² for the lever scale: 3) and the
-    # loads once certified (h: 5, F_z = −K h: 1): 9.
-    "support_rows_loads": {"flops": 9, "per": "foot", "width": "scalar"},
-    # lib/friction/balance.cpp viscous_balance_rows (isotropic robots, G = I), every foot,
-    # branch-free: c = μ F_z (1), c q_x, c q_y (2), L² = q_x² + q_y² (3), Σc, Σc q_x, Σc q_y += (3),
-    # Σ c (q_x² + q_y²) += c q_x q_x + c q_y q_y (4), Σ c q̇_x, Σ c q̇_y += (2 each: 4), Σ c (q_x q̇_y −
-    # q_y q̇_x) += (4): 21. (The general loop for anisotropic feet, viscous_balance_general, needs
-    # 40: c (1 + w²) and c w0 w1 per foot and the products with them.)
-    "system_assembly": {"flops": 21, "per": "foot", "width": "scalar"},
+    # lib/contact/support_newton.cpp rows_and_start (the rows and the all-feet cell at v = 0, four
+    # feet at a time): h = q_z (no arithmetic); w y, w x, w h (3); k, y, x += (3); yy, yx, xx,
+    # gy, gx += (w·) · (2 each: 10); gz += w h (1); q_x² + q_y² for the lever scale (3): 20.
+    "support_start_pass": {"flops": 20, "per": "foot", "width": "avx2"},
+    # add_feet, each Newton step's pass: h = y v0 + x v1 + (q_z + v2) (2 × and 3 +: 5), the
+    # sums as in the start pass (17), d = on − on_prev and changes += d d (3): 25.
+    "support_newton_pass": {"flops": 25, "per": "foot", "width": "avx2"},
+    # Once certified, four feet at a time: near_plane (h: 5, h h: 1) and the outputs (h: 5,
+    # F_z = −K h: 1): 12.
+    "support_certify": {"flops": 12, "per": "foot", "width": "avx2"},
+    # lib/friction/balance.cpp viscous_balance_rows (isotropic robots, G = I), every foot, four at
+    # a time, branch-free: c = μ F_z (1), c q_x, c q_y (2), L² = q_x² + q_y² (3), Σc, Σc q_x,
+    # Σc q_y += (3), Σ c (q_x² + q_y²) += c q_x q_x + c q_y q_y (4), Σ c q̇_x, Σ c q̇_y += (2 each:
+    # 4), Σ c (q_x q̇_y − q_y q̇_x) += (4), the active count += (1): 22. (The general loop for
+    # anisotropic feet, viscous_balance_general, needs 40: c (1 + w²) and c w0 w1 per foot and the
+    # products with them.)
+    "system_assembly": {"flops": 22, "per": "foot", "width": "avx2"},
     # balance.cpp viscous_forces_rows (isotropic), every foot, four at a time: u0 = v0 − ω q_y +
     # q̇_x and u1 = v1 + ω q_x + q̇_y (3 each), F0, F1 = −c u (1 each), fx, fy += (2), mz += q_x F1
     # − q_y F0 (4), dissipation −= F·u (4), scale += c (|q̇0| + |q̇1| + |u0| + |u1|) (5): 23.
     # (viscous_forces, the general loop for anisotropic feet: 35, with G u = u + w (w·u).)
     "viscous_forces": {"flops": 23, "per": "foot", "width": "avx2"},
     # lib/connection/local_connection.cpp columns_from_rows (isotropic robots, from the viscous
-    # rows), every foot: c (S q) = (−q_y c, q_x c) (2), six entries −(p c + p' s) (3 each: 18): 20.
-    # (columns<kAniso>, for anisotropic feet: 36, with c G and (S q)ᵀ c G per foot.)
-    "connection_columns": {"flops": 20, "per": "foot", "width": "scalar"},
+    # rows), every foot, four at a time (transposed in registers to A's layout): c (S q) = (−q_y c,
+    # q_x c) (2), six entries −(p c + p' s) (3 each: 18): 20. (columns<kAniso>, for anisotropic
+    # feet: 36, with c G and (S q)ᵀ c G per foot.)
+    "connection_columns": {"flops": 20, "per": "foot", "width": "avx2"},
     # lib/friction/coulomb_solver.hpp assemble<kAll, false> (coulomb.cpp's pass: one per Newton
     # step plus one), every foot: r0, r1 (six multiply-adds: 12), r·r (3), ρ = √(r·r + δ² + 1 − m)
     # (3 and a root: 4), ir = m / ρ (a divide: 1), f += m ρ (2), the r2_min term (2), g0, g1, g2
@@ -94,11 +96,11 @@ FLOPS = {
 # solve's setup (B_k, d_k per foot) and its viscous start are left out: its count is a floor.
 STAGES = {
     "support": [("support_start_pass", 1), ("support_newton_pass", "steps"),
-                ("support_rows_loads", 1)],
+                ("support_certify", 1)],
     "connection": [("system_assembly", 1), ("connection_columns", 1)],
     "viscous": [("system_assembly", 1), ("viscous_forces", 1)],
     "model": [("support_start_pass", 1), ("support_newton_pass", "steps"),
-              ("support_rows_loads", 1), ("system_assembly", 1), ("connection_columns", 1),
+              ("support_certify", 1), ("system_assembly", 1), ("connection_columns", 1),
               ("viscous_forces", 1)],
     "coulomb_1e-09": [("coulomb_pass", "iterations+1"), ("coulomb_finish", 1)],
 }

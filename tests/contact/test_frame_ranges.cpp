@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -206,7 +207,8 @@ TEST(FrameRanges, CheckFrameRefusesEveryOutOfRangeEntryAtEveryPlaceAndEveryLegCo
   // check_frame tests four values at a time with an overlapping last group: every entry of q and
   // q̇, at every leg count up to nine (3N from 3 to 27 values: every remainder), is tested, and
   // the bounds themselves are admitted.
-  const double bad[] = {std::nan(""), INFINITY, -INFINITY, 1.0000001e3, -2e3, 1e300};
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double bad[] = {std::nan(""), kInf, -kInf, 1.0000001e3, -2e3, 1e300};
   for (int n = 1; n <= 9; ++n) {
     const Robot robot = uniform_robot(n);
     Frame frame(robot);
@@ -216,7 +218,7 @@ TEST(FrameRanges, CheckFrameRefusesEveryOutOfRangeEntryAtEveryPlaceAndEveryLegCo
     frame.q(1, 0) = limits::kPosition.lo;
     frame.qdot(2, n - 1) = limits::kVelocity.lo;
     ASSERT_NO_THROW(check_frame(robot, frame)) << n << " legs";
-    for (Eigen::Index at = 0; at < 3 * n; ++at) {
+    for (Eigen::Index at = 0; at < frame.q.size(); ++at) {
       for (const double x : bad) {
         for (Eigen::Matrix3Xd* m : {&frame.q, &frame.qdot}) {
           const double keep = m->data()[at];

@@ -188,7 +188,7 @@ class PerfLegged(unittest.TestCase):
             return count * k["flops"] * (DOWN if k["per"] == "contact" else 1.0) / peak[k["width"]]
 
         at_peak = (cycles("support_start_pass") + cycles("support_newton_pass", steps)
-                   + cycles("support_rows_loads") + cycles("system_assembly")
+                   + cycles("support_certify") + cycles("system_assembly")
                    + cycles("connection_columns") + cycles("viscous_forces"))
         self.assertAlmostEqual(v["limit_model_peak_cycles_per_leg"], at_peak)
         self.assertAlmostEqual(v["limit_model_fraction_of_peak"], at_peak / 20.0)
