@@ -100,29 +100,11 @@ CoulombScratch::CoulombScratch(int legs)
 
 namespace detail {
 
-// Whether |x_i| ≤ bound for all n values of x: a lane mask ANDed over the values, four at a time
-// (a comparison with NaN is false, so NaN and infinity fail without a test of their own), the last
-// four overlapping the ones before them (testing a value twice is harmless). Branch-free: a
-// short-circuiting test per value was the model's largest per-leg cost after the support search.
+// Whether |x_i| ≤ bound for all n values of x (core::all_within; cloned here, where it is called
+// through check_frame and Robot::isotropic). A short-circuiting test per value was the model's
+// largest per-leg cost after the support search.
 SLIPWALK_CLONES bool within(const double* x, Eigen::Index n, double bound) {
-  using L = core::Lanes<4>;
-  using V = L::V;
-  if (n < 4) {
-    bool ok = true;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      ok = ok && std::abs(x[i]) <= bound;
-    }
-    return ok;
-  }
-  const L::M sign_off = L::M{} + std::numeric_limits<std::int64_t>::max();
-  const auto abs = [&sign_off](V v) { return std::bit_cast<V>(std::bit_cast<L::M>(v) & sign_off); };
-  const V limit = L::splat(bound);
-  L::M ok = L::M{} - 1;  // every lane true
-  for (Eigen::Index i = 0; i + 4 <= n; i += 4) {
-    ok &= abs(L::load(x + i)) <= limit;
-  }
-  ok &= abs(L::load(x + n - 4)) <= limit;
-  return (ok[0] & ok[1] & ok[2] & ok[3]) != 0;
+  return core::all_within(x, n, bound);
 }
 
 }  // namespace detail

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -63,6 +64,29 @@ struct Lanes {
     return s;
   }
 };
+
+/// Whether |p_i| ≤ bound for all n values: a lane mask ANDed over the values, four at a time (a
+/// comparison with NaN is false, so NaN and infinity fail without a test of their own), the last
+/// four overlapping the ones before them (testing a value twice is harmless). Branch-free.
+[[gnu::always_inline]] inline bool all_within(const double* p, std::ptrdiff_t n, double bound) {
+  using L = Lanes<4>;
+  using V = L::V;
+  if (n < 4) {
+    bool ok = true;
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+      ok = ok && (p[i] <= bound && -p[i] <= bound);
+    }
+    return ok;
+  }
+  const L::M sign_off = L::M{} + std::numeric_limits<std::int64_t>::max();
+  const V limit = L::splat(bound);
+  L::M ok = L::M{} - 1;  // every lane true
+  for (std::ptrdiff_t i = 0; i + 4 <= n; i += 4) {
+    ok &= std::bit_cast<V>(std::bit_cast<L::M>(L::load(p + i)) & sign_off) <= limit;
+  }
+  ok &= std::bit_cast<V>(std::bit_cast<L::M>(L::load(p + n - 4)) & sign_off) <= limit;
+  return (ok[0] & ok[1] & ok[2] & ok[3]) != 0;
+}
 
 // Loading the feet of a pass four at a time, group j … j + 3 of n feet. Where the group is not
 // full (the last, r = n − j < 4 feet), the loads never read past the end: for n ≥ 4 they read

@@ -108,8 +108,8 @@ SLIPWALK_CLONES bool viscous_balance_rows(const contact::Robot& robot, contact::
                                  rows.row(Row::kQdx).data(), rows.row(Row::kQdy).data(),
                                  rows.row(Row::kC).data()};
   // G = I for every foot: no anisotropy anywhere (checked on the robot, so that the pass below
-  // carries no term for it).
-  if (!robot.isotropic()) {
+  // carries no term for it; Robot::isotropic()'s test, inline in this clone).
+  if (!core::all_within(robot.w.data(), robot.w.size(), 0.0)) {
     return false;
   }
   // One pass, four feet at a time: the feet into the rows (for the force pass after the solve and
