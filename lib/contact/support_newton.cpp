@@ -337,10 +337,6 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
   const Eigen::Index n = frame.q.cols();
   const double* const q = frame.q.data();
   const double* const K = robot.K.data();
-  const auto abs = [](V a) {
-    return std::bit_cast<V>(std::bit_cast<L::M>(a) &
-                            (L::M{} + std::numeric_limits<std::int64_t>::max()));
-  };
   Sums s;
   V max_y{};
   V max_x{};
@@ -359,9 +355,9 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
     L::store(row[kQz] + j, z_row);
     L::store(row[kK] + j, k);
     L::store(on + j, k > L::splat(0.0));
-    max_y = max_y < abs(y) ? abs(y) : max_y;
-    max_x = max_x < abs(x) ? abs(x) : max_x;
-    max_z = max_z < abs(z) ? abs(z) : max_z;
+    max_y = max_y < L::abs(y) ? L::abs(y) : max_y;
+    max_x = max_x < L::abs(x) ? L::abs(x) : max_x;
+    max_z = max_z < L::abs(z) ? L::abs(z) : max_z;
     const V r2 = x * x + y * y;
     max_r2 = max_r2 < r2 ? r2 : max_r2;
     accumulate(s, k, y, minus_x, z);  // the all-feet cell at v = 0: h = q_z, weight K

@@ -56,6 +56,10 @@ struct Lanes {
   static void store(std::int64_t* p, M m) { std::memcpy(p, &m, sizeof m); }
   static V splat(double x) { return V{} + x; }
   static V select(M mask, V x) { return std::bit_cast<V>(std::bit_cast<M>(x) & mask); }
+  /// |x| lane by lane: the sign bit cleared (NaN stays NaN).
+  static V abs(V x) {
+    return std::bit_cast<V>(std::bit_cast<M>(x) & (M{} + std::numeric_limits<std::int64_t>::max()));
+  }
   static double sum(V v) {
     double s = 0.0;
     for (int i = 0; i < W; ++i) {
@@ -78,13 +82,12 @@ struct Lanes {
     }
     return ok;
   }
-  const L::M sign_off = L::M{} + std::numeric_limits<std::int64_t>::max();
   const V limit = L::splat(bound);
   L::M ok = L::M{} - 1;  // every lane true
   for (std::ptrdiff_t i = 0; i + 4 <= n; i += 4) {
-    ok &= std::bit_cast<V>(std::bit_cast<L::M>(L::load(p + i)) & sign_off) <= limit;
+    ok &= L::abs(L::load(p + i)) <= limit;
   }
-  ok &= std::bit_cast<V>(std::bit_cast<L::M>(L::load(p + n - 4)) & sign_off) <= limit;
+  ok &= L::abs(L::load(p + n - 4)) <= limit;
   return (ok[0] & ok[1] & ok[2] & ok[3]) != 0;
 }
 

@@ -183,10 +183,6 @@ struct ForceLanes {
                                               ForceLanes& s) {
   using L = core::Lanes<4>;
   using V = L::V;
-  const auto abs = [](V a) {
-    return std::bit_cast<V>(std::bit_cast<L::M>(a) &
-                            (L::M{} + std::numeric_limits<std::int64_t>::max()));
-  };
   const V c = L::load(r[Row::kC] + j);
   const V x = L::load(r[Row::kQx] + j);
   const V y = L::load(r[Row::kQy] + j);
@@ -209,7 +205,7 @@ struct ForceLanes {
   s.fy += F1;
   s.mz += x * F1 - y * F0;
   s.dissipation -= F0 * u0 + F1 * u1;
-  s.scale += c * (abs(dx) + abs(dy) + abs(u0) + abs(u1));
+  s.scale += c * (L::abs(dx) + L::abs(dy) + L::abs(u0) + L::abs(u1));
 }
 
 }  // namespace
