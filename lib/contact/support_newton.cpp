@@ -123,15 +123,16 @@ struct Sums {
 
 // The quadratic model of the sums (the contact changes are the caller's).
 [[gnu::always_inline]] inline Cell cell_of(const Sums& s, double Mg) {
-  const auto sum = [&s](auto Sums::*m) { return Lanes<4>::sum(s.*m); };
-  const double sy = sum(&Sums::y);
-  const double sx = sum(&Sums::x);
-  const double syx = sum(&Sums::yx);
+  const Sums::V first = core::lane_sums(s.k, s.y, s.x, s.yy);
+  const Sums::V second = core::lane_sums(s.yx, s.xx, s.gy, s.gx);
+  const double sy = first[1];
+  const double sx = first[2];
+  const double syx = second[0];
   Cell c;
-  c.H << sum(&Sums::yy), syx, sy,  //
-      syx, sum(&Sums::xx), sx,     //
-      sy, sx, sum(&Sums::k);
-  c.g << sum(&Sums::gy), sum(&Sums::gx), sum(&Sums::gz) + Mg;
+  c.H << first[3], syx, sy,  //
+      syx, second[1], sx,    //
+      sy, sx, first[0];
+  c.g << second[2], second[3], Lanes<4>::sum(s.gz) + Mg;
   return c;
 }
 

@@ -156,16 +156,18 @@ SLIPWALK_CLONES bool viscous_balance_rows(const contact::Robot& robot, contact::
     scdy += c * dy;
     scm += cx * dy - cy * dx;  // (S q)ᵀ q̇ c = (−q_y q̇_x + q_x q̇_y) c
   }
-  out.active = static_cast<int>(L::sum(active));
-  out.c_sum = L::sum(sc);
+  const V counts = core::lane_sums(active, sc, scx, scy);
+  const V moments = core::lane_sums(scrr, scdx, scdy, scm);
+  out.active = static_cast<int>(counts[0]);
+  out.c_sum = counts[1];
   out.anisotropic = false;
   out.rows = true;
   out.set_lever_scale(std::max(std::max(L2[0], L2[1]), std::max(L2[2], L2[3])));
   const double il = out.inv_L;
-  const double sx = L::sum(scx) * il;
-  const double sy = L::sum(scy) * il;
-  M << out.c_sum, 0.0, -sy, 0.0, out.c_sum, sx, -sy, sx, L::sum(scrr) * il * il;
-  b << L::sum(scdx), L::sum(scdy), L::sum(scm) * il;
+  const double sx = counts[2] * il;
+  const double sy = counts[3] * il;
+  M << out.c_sum, 0.0, -sy, 0.0, out.c_sum, sx, -sy, sx, moments[0] * il * il;
+  b << moments[1], moments[2], moments[3] * il;
   return true;
 }
 
@@ -221,9 +223,8 @@ SLIPWALK_CLONES ForceSums viscous_forces_rows(contact::Frame& frame, double v0, 
   for (Eigen::Index j = 0; j < rows.cols(); j += 4) {  // a multiple of four
     add_forces(r, j, frame.legs(), Fxy, v0, v1, om, s);
   }
-  const auto sum = [&s](auto ForceLanes::*m) { return core::Lanes<4>::sum(s.*m); };
-  return {sum(&ForceLanes::fx), sum(&ForceLanes::fy), sum(&ForceLanes::mz),
-          sum(&ForceLanes::dissipation), sum(&ForceLanes::scale)};
+  const core::Lanes<4>::V sums = core::lane_sums(s.fx, s.fy, s.mz, s.dissipation);
+  return {sums[0], sums[1], sums[2], sums[3], core::Lanes<4>::sum(s.scale)};
 }
 
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
