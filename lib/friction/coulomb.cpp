@@ -989,8 +989,8 @@ FinishSums Solver<kLoaded>::finish_pass(const Eigen::Vector3d& y, const Dual& du
       l1 = n1 + n0 * tp;
     }
     // A select, not use · (…): the kink foot may sit exactly at r = 0, where n = r/‖r‖ is NaN.
-    const A2 c0 = (use > 0.0).select(l0 - (b0 * mu0 + b2 * mu1 + b4 * mu2), 0.0);
-    const A2 c1 = (use > 0.0).select(l1 - (b1 * mu0 + b3 * mu1 + b5 * mu2), 0.0);
+    const A2 c0 = where_positive(use, l0 - (b0 * mu0 + b2 * mu1 + b4 * mu2));
+    const A2 c1 = where_positive(use, l1 - (b1 * mu0 + b3 * mu1 + b5 * mu2));
     lmax2 = lmax2.max(c0 * c0 + c1 * c1);
     value += c0 * d0 + c1 * d1;
     const A2 F0 = -(b0 * c0 + b2 * c1);

@@ -9,7 +9,10 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -166,6 +169,21 @@ class Solver {
   // The row pointers are read once: the stores to the row r2 would otherwise make the compiler
   // reload them for every pair of feet.
   using A2 = Eigen::Array2d;
+  /// x where w > 0, else +0 (a NaN in x included), lane by lane and without a branch. Eigen 3.4
+  /// evaluates select() a coefficient at a time, with a branch and a store each, which the next
+  /// load of the pair then waits on (the store cannot be forwarded to the wider load).
+  static A2 where_positive(const A2& w, const A2& x) {
+    using V2 = double __attribute__((vector_size(16)));
+    using M2 = std::int64_t __attribute__((vector_size(16)));
+    V2 wv;
+    V2 xv;
+    std::memcpy(&wv, w.data(), sizeof wv);
+    std::memcpy(&xv, x.data(), sizeof xv);
+    const V2 kept = std::bit_cast<V2>(std::bit_cast<M2>(xv) & (wv > 0.0));
+    A2 out;
+    std::memcpy(out.data(), &kept, sizeof kept);
+    return out;
+  }
   struct Rows {
     const double* b[8];  ///< B_k (6 rows) and d_k (2 rows)
     const double* mask;
