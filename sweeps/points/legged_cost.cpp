@@ -17,9 +17,11 @@
 //  * solves every frame with the point's method and measures the error against the reference,
 //  * times the method: `repeats` times a loop over all frames (each repeat lasting ≥ 0.5 ms, the
 //    frames cycled as often as needed), reporting the median and quartiles over the repeats of
-//    the mean time per frame. All frames are built before the clock starts, so nothing in the
-//    timed loop allocates; the kind is timed, so the runner runs its points one at a time and two
-//    timings never share the cores of one sweep.
+//    the mean time per frame; Coulomb and the ε-family also time the viscous-Coulomb balance
+//    in the same repeats, alternately (viscous_time_ns, and ratio_viscous: the median of the
+//    per-repeat ratios, what the report states their cost in). All frames are built before the
+//    clock starts, so nothing in the timed loop allocates; the kind is timed, so the runner runs
+//    its points one at a time and two timings never share the cores of one sweep.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -265,49 +267,94 @@ struct Timing {
   double median = kNaN;  ///< ns per frame
   double p25 = kNaN;
   double p75 = kNaN;
+  double baseline = kNaN;  ///< the viscous-Coulomb balance, timed in the same repeats: median
+  double ratio = kNaN;     ///< median over the repeats of (method ÷ viscous-Coulomb)
 };
+
+/// Whether a row also times the viscous-Coulomb balance alternately with its method: the friction
+/// laws whose cost the report states as a multiple of it (Coulomb, the ε-family).
+[[nodiscard]] bool paired_with_viscous(Method m) {
+  return m == Method::kCoulomb || m == Method::kEpsilon;
+}
 
 /// Mean CPU time per frame of the method over all frames, `repeats` times; the frames were solved
 /// once already (warm caches, and the outputs the errors are computed from). Along a trajectory
 /// each frame is solved after the previous one, from what it left (carry; the first from the
-/// last, once per pass a jump back along the walk).
+/// last, once per pass a jump back along the walk). With `baseline` frames (a copy, so that
+/// neither solve changes the other's warm starts), every repeat also times the viscous-Coulomb
+/// balance on them, before or after the method in turn: a ratio of two times taken seconds apart
+/// moves with the load of a shared machine, one taken within a repeat does not.
 Timing time_method(const contact::Robot& robot, std::vector<contact::Frame>& frames,
-                   const CostInputs& in) {
-  const auto pass = [&] {
-    if (in.trajectory) {
-      const contact::Frame* prev = &frames.back();
-      for (contact::Frame& f : frames) {
+                   const CostInputs& in, std::vector<contact::Frame>* baseline) {
+  const auto pass = [&robot](std::vector<contact::Frame>& fs, const CostInputs& how) {
+    if (how.trajectory) {
+      const contact::Frame* prev = &fs.back();
+      for (contact::Frame& f : fs) {
         carry(*prev, f);
-        solve(robot, f, in);
+        solve(robot, f, how);
         prev = &f;
       }
     } else {
-      for (contact::Frame& f : frames) {
-        solve(robot, f, in);
+      for (contact::Frame& f : fs) {
+        solve(robot, f, how);
       }
     }
   };
+  CostInputs viscous = in;
+  viscous.method = Method::kViscous;
   // How many passes make one repeat last kMinRepeatSeconds (the clock's resolution and the
   // loop's overhead then do not matter).
-  double t0 = thread_cpu_seconds();
-  pass();
-  const double once = thread_cpu_seconds() - t0;
-  const long long passes =
-      std::clamp(static_cast<long long>(std::ceil(kMinRepeatSeconds / std::max(once, 1e-9))), 1LL,
-                 1'000'000LL);
-  std::vector<double> per_frame;
-  per_frame.reserve(static_cast<std::size_t>(in.repeats));
-  for (long long r = 0; r < in.repeats; ++r) {
-    t0 = thread_cpu_seconds();
-    for (long long p = 0; p < passes; ++p) {
-      pass();
+  const auto passes_for = [&](std::vector<contact::Frame>& fs, const CostInputs& how) {
+    const double t0 = thread_cpu_seconds();
+    pass(fs, how);
+    const double once = thread_cpu_seconds() - t0;
+    return std::clamp(static_cast<long long>(std::ceil(kMinRepeatSeconds / std::max(once, 1e-9))),
+                      1LL, 1'000'000LL);
+  };
+  // The mean time per frame, ns, of `count` passes.
+  const auto timed = [&](std::vector<contact::Frame>& fs, const CostInputs& how, long long count) {
+    const double t0 = thread_cpu_seconds();
+    for (long long p = 0; p < count; ++p) {
+      pass(fs, how);
     }
-    const double s = thread_cpu_seconds() - t0;
-    per_frame.push_back(1e9 * s / static_cast<double>(passes * in.frames));
+    return 1e9 * (thread_cpu_seconds() - t0) / static_cast<double>(count * in.frames);
+  };
+  const long long passes = passes_for(frames, in);
+  const long long base_passes = baseline != nullptr ? passes_for(*baseline, viscous) : 0;
+  std::vector<double> per_frame;
+  std::vector<double> base_per_frame;
+  std::vector<double> ratios;
+  per_frame.reserve(static_cast<std::size_t>(in.repeats));
+  base_per_frame.reserve(static_cast<std::size_t>(in.repeats));
+  ratios.reserve(static_cast<std::size_t>(in.repeats));
+  for (long long r = 0; r < in.repeats; ++r) {
+    if (baseline == nullptr) {
+      per_frame.push_back(timed(frames, in, passes));
+      continue;
+    }
+    double method_ns = 0.0;
+    double base_ns = 0.0;
+    if (r % 2 == 0) {
+      base_ns = timed(*baseline, viscous, base_passes);
+      method_ns = timed(frames, in, passes);
+    } else {
+      method_ns = timed(frames, in, passes);
+      base_ns = timed(*baseline, viscous, base_passes);
+    }
+    per_frame.push_back(method_ns);
+    base_per_frame.push_back(base_ns);
+    ratios.push_back(method_ns / base_ns);
   }
   std::sort(per_frame.begin(), per_frame.end());
-  return {quantile_of_sorted(per_frame, 0.5), quantile_of_sorted(per_frame, 0.25),
-          quantile_of_sorted(per_frame, 0.75)};
+  Timing t{quantile_of_sorted(per_frame, 0.5), quantile_of_sorted(per_frame, 0.25),
+           quantile_of_sorted(per_frame, 0.75)};
+  if (baseline != nullptr) {
+    std::sort(base_per_frame.begin(), base_per_frame.end());
+    std::sort(ratios.begin(), ratios.end());
+    t.baseline = quantile_of_sorted(base_per_frame, 0.5);
+    t.ratio = quantile_of_sorted(ratios, 0.5);
+  }
+  return t;
 }
 
 struct Errors {
@@ -391,7 +438,9 @@ struct CostRow {
   double time_ns = kNaN;      ///< median over the repeats of the mean time per frame
   double time_ns_p25 = kNaN;  ///< its quartiles
   double time_ns_p75 = kNaN;
-  double err_v_median = kNaN;  ///< ‖(Δv_x, Δv_y, L Δω)‖ / V over the frames
+  double viscous_time_ns = kNaN;  ///< coulomb, epsilon: viscous-Coulomb in the same repeats
+  double ratio_viscous = kNaN;    ///< coulomb, epsilon: median per-repeat time ÷ viscous-Coulomb's
+  double err_v_median = kNaN;     ///< ‖(Δv_x, Δv_y, L Δω)‖ / V over the frames
   double err_v_p95 = kNaN;
   double err_v_max = kNaN;
   double err_F_median = kNaN;  ///< max_k ‖ΔF_k‖ / (μ_k F_z,k) over the frames
@@ -424,6 +473,8 @@ struct CostRow {
             timing("time_ns", &R::time_ns, "ns"),
             timing("time_ns_p25", &R::time_ns_p25, "ns"),
             timing("time_ns_p75", &R::time_ns_p75, "ns"),
+            timing("viscous_time_ns", &R::viscous_time_ns, "ns"),
+            timing("ratio_viscous", &R::ratio_viscous, ""),
             value("err_v_median", &R::err_v_median),
             value("err_v_p95", &R::err_v_p95),
             value("err_v_max", &R::err_v_max),
@@ -484,7 +535,12 @@ Rows<CostRow> run_cost(const Point& point) {
       add_error(robot, f, ref, in.method != Method::kCoulomb, errors);
     }
   }
-  const Timing t = time_method(robot, frames, in);
+  std::vector<contact::Frame> baseline;
+  if (paired_with_viscous(in.method)) {
+    baseline = frames;  // before the clock starts: the timed loops allocate nothing
+  }
+  const Timing t =
+      time_method(robot, frames, in, paired_with_viscous(in.method) ? &baseline : nullptr);
   const Stats ev = stats(errors.v);
   const Stats eF = stats(errors.F);
   const double nf = static_cast<double>(in.frames);
@@ -516,6 +572,8 @@ Rows<CostRow> run_cost(const Point& point) {
                       t.median,
                       t.p25,
                       t.p75,
+                      t.baseline,
+                      t.ratio,
                       ev.median,
                       ev.p95,
                       ev.max,

@@ -140,6 +140,27 @@ class PerfLegged(unittest.TestCase):
         # the fits read the independent rows only: the trajectory rows do not move them
         self.assertAlmostEqual(v["fit_viscous_b_ns"], LINES["viscous"][1], places=6)
 
+    def test_a_paired_ratio_column_is_preferred_to_the_ratio_of_two_rows(self):
+        # The Coulomb rows timed alternately with the viscous balance: their per-repeat ratio
+        # (here 4.5 along the walk, 7 on independent frames) is the one stated, not 200/50 or
+        # 400/50 from two rows; rows without the column (the viscous ones) stay NaN.
+        make(self.data, sequence=True)  # machine.csv and the peer file; the cost file below
+        header, rows = cost_rows(sequence=True)
+        header = header + ["viscous_time_ns", "ratio_viscous"]
+        for r in rows:
+            paired = 4.5 if r[-1] == "trajectory" else 7.0
+            hexapod_coulomb = r[3] == "coulomb" and r[1] == "hexapod"
+            r += [r[12] / paired, paired] if hexapod_coulomb else ["nan", "nan"]
+        write(self.data / "ch3_legged" / "cost_scaling.csv", header, rows)
+        p, v, body = run(self.data, self.out)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertAlmostEqual(v["ratio_coulomb_viscous_hexapod"], 7.0)
+        self.assertAlmostEqual(v["ratio_coulomb_viscous_hexapod_trajectory"], 4.5)
+        self.assertAlmostEqual(v["ratio_coulomb_viscous_target"], 4.5)
+        self.assertTrue(v["ratio_viscous_paired"])
+        self.assertTrue(v["target_ratio_met"])
+        self.assertIn("timed alternately in the same repeats", body)
+
     def test_a_sequence_that_is_neither_kind_is_refused_naming_the_line(self):
         header, rows = cost_rows(sequence=True)
         rows[2][-1] = "sometimes"

@@ -205,5 +205,34 @@ TEST(LeggedCost, TrajectoryFramesAreSolvedInOrderWithinTheCertificate) {
   EXPECT_GT(num(rows[1], "err_v_median"), 1e-3);  // viscous-Coulomb: another law
 }
 
+// Coulomb's and the ε-family's rows time the viscous-Coulomb balance in the same repeats: a ratio
+// whose two times were taken together, within the range of the per-repeat times it is the median
+// of (a ratio of medians and the median of ratios agree to within the spread of the repeats);
+// the other rows have neither column.
+TEST(LeggedCost, FrictionLawsAreTimedAlternatelyWithTheViscousBalance) {
+  const std::vector<Cells> rows =
+      run("[params]\nrobot = \"hexapod\"\nframes = 40\nrepeats = 5\nseed = 2\n"
+          "[[block]]\nparams.method = \"coulomb\"\nparams.tol = 1e-9\n"
+          "[[block]]\nparams.method = \"epsilon\"\nparams.eps = 1e-3\nparams.tol = 1e-9\n"
+          "[[block]]\naxes.method = [\"viscous\", \"model\"]\n");
+  ASSERT_EQ(rows.size(), 4u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double ratio = num(rows[i], "ratio_viscous");
+    const double viscous = num(rows[i], "viscous_time_ns");
+    ASSERT_TRUE(std::isfinite(ratio) && std::isfinite(viscous)) << i;
+    EXPECT_GT(viscous, 0.0);
+    // Both solve far more per frame than the viscous ansatz's one 3 × 3 system.
+    EXPECT_GT(ratio, 1.0) << i;
+    const double low = num(rows[i], "time_ns_p25") / viscous;
+    const double high = num(rows[i], "time_ns_p75") / viscous;
+    EXPECT_GT(ratio, 0.5 * low) << i;
+    EXPECT_LT(ratio, 2.0 * high) << i;
+  }
+  for (std::size_t i = 2; i < 4; ++i) {
+    EXPECT_TRUE(std::isnan(num(rows[i], "ratio_viscous"))) << i;
+    EXPECT_TRUE(std::isnan(num(rows[i], "viscous_time_ns"))) << i;
+  }
+}
+
 }  // namespace
 }  // namespace slipwalk::sweeps
