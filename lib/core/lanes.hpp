@@ -11,7 +11,8 @@
 //
 // The vectors never cross a call boundary between translation units (helpers are inlined), so
 // GCC's note that passing them without AVX would change the ABI does not apply: it is silenced for
-// the files that include this header (only .cpp files with passes over the feet do).
+// the files that include this header (the .cpp files with passes over the feet, and the Coulomb
+// solver's internal header, friction/coulomb_solver.hpp, for Lanes<2>).
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -34,6 +35,11 @@ template <>
 struct VectorTypes<4> {
   using V = double __attribute__((vector_size(32)));
   using M = std::int64_t __attribute__((vector_size(32)));
+};
+template <>
+struct VectorTypes<2> {  // one SSE2 register: the Coulomb solver's passes, two feet at a time
+  using V = double __attribute__((vector_size(16)));
+  using M = std::int64_t __attribute__((vector_size(16)));
 };
 
 /// W doubles side by side (W = 4; another width is one more VectorTypes entry): unaligned loads and
@@ -194,30 +200,13 @@ template <class T>
   return ((M{} + static_cast<std::int64_t>(word)) & M{0xFF, 0xFF00, 0xFF0000, 0xFF000000}) != 0;
 }
 
-/// Stores flags p[j …] (a char each: 1 where lane i of m is all ones, else 0), lanes
-/// 0 … n − j − 1.
-[[gnu::always_inline]] inline void store_flags(char* p, std::ptrdiff_t n, std::ptrdiff_t j,
-                                               Lanes<4>::M m) {
-  using Chars = char __attribute__((vector_size(4)));
-  const Chars c = __builtin_convertvector(m & 1, Chars);
+/// Stores lanes 0 … n − j − 1 of v (elements of type T) to p[j …]: all four at once where
+/// j + 4 ≤ n, else one by one.
+template <class T, class Vec>
+[[gnu::always_inline]] inline void store_lanes(T* p, std::ptrdiff_t n, std::ptrdiff_t j, Vec v) {
+  static_assert(sizeof v == 4 * sizeof(T));
   if (j + 4 <= n) {
-    std::memcpy(p + j, &c, sizeof c);
-    return;
-  }
-  p[j] = c[0];
-  if (j + 1 < n) {
-    p[j + 1] = c[1];
-  }
-  if (j + 2 < n) {
-    p[j + 2] = c[2];
-  }
-}
-
-/// Stores lanes 0 … n − j − 1 of v to p[j …] (all four where j + 4 ≤ n).
-[[gnu::always_inline]] inline void store_padded(double* p, std::ptrdiff_t n, std::ptrdiff_t j,
-                                                Lanes<4>::V v) {
-  if (j + 4 <= n) {
-    Lanes<4>::store(p + j, v);
+    std::memcpy(p + j, &v, sizeof v);
     return;
   }
   p[j] = v[0];
@@ -227,6 +216,20 @@ template <class T>
   if (j + 2 < n) {
     p[j + 2] = v[2];
   }
+}
+
+/// Stores flags p[j …] (a char each: 1 where lane i of m is all ones, else 0), lanes
+/// 0 … n − j − 1.
+[[gnu::always_inline]] inline void store_flags(char* p, std::ptrdiff_t n, std::ptrdiff_t j,
+                                               Lanes<4>::M m) {
+  using Chars = char __attribute__((vector_size(4)));
+  store_lanes(p, n, j, __builtin_convertvector(m & 1, Chars));
+}
+
+/// Stores lanes 0 … n − j − 1 of v to p[j …] (all four where j + 4 ≤ n).
+[[gnu::always_inline]] inline void store_padded(double* p, std::ptrdiff_t n, std::ptrdiff_t j,
+                                                Lanes<4>::V v) {
+  store_lanes(p, n, j, v);
 }
 
 }  // namespace slipwalk::core

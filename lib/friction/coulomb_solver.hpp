@@ -9,13 +9,11 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <utility>
 
+#include "core/lanes.hpp"
 #include "friction/balance.hpp"
 #include "friction/solvers.hpp"
 
@@ -173,15 +171,9 @@ class Solver {
   /// evaluates select() a coefficient at a time, with a branch and a store each, which the next
   /// load of the pair then waits on (the store cannot be forwarded to the wider load).
   static A2 where_positive(const A2& w, const A2& x) {
-    using V2 = double __attribute__((vector_size(16)));
-    using M2 = std::int64_t __attribute__((vector_size(16)));
-    V2 wv;
-    V2 xv;
-    std::memcpy(&wv, w.data(), sizeof wv);
-    std::memcpy(&xv, x.data(), sizeof xv);
-    const V2 kept = std::bit_cast<V2>(std::bit_cast<M2>(xv) & (wv > 0.0));
+    using L = core::Lanes<2>;
     A2 out;
-    std::memcpy(out.data(), &kept, sizeof kept);
+    L::store(out.data(), L::select(L::load(w.data()) > 0.0, L::load(x.data())));
     return out;
   }
   struct Rows {

@@ -535,12 +535,12 @@ Rows<CostRow> run_cost(const Point& point) {
       add_error(robot, f, ref, in.method != Method::kCoulomb, errors);
     }
   }
+  const bool paired = paired_with_viscous(in.method);
   std::vector<contact::Frame> baseline;
-  if (paired_with_viscous(in.method)) {
+  if (paired) {
     baseline = frames;  // before the clock starts: the timed loops allocate nothing
   }
-  const Timing t =
-      time_method(robot, frames, in, paired_with_viscous(in.method) ? &baseline : nullptr);
+  const Timing t = time_method(robot, frames, in, paired ? &baseline : nullptr);
   const Stats ev = stats(errors.v);
   const Stats eF = stats(errors.F);
   const double nf = static_cast<double>(in.frames);
