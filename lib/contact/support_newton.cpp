@@ -43,6 +43,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 #include "core/lanes.hpp"
 
@@ -88,11 +89,12 @@ struct Rows {
   }
 };
 
-// The quadratic model of U on the contact set read off at v, and how many feet changed set.
+// The quadratic model of U on the contact set read off at v, and which feet changed set.
 struct Cell {
-  Eigen::Matrix3d H;  // Σ_C K a aᵀ
-  Eigen::Vector3d g;  // Σ_C K h a + Mg e_z = (M_x, M_y, Mg − ΣF_z)
-  double changes = 0.0;
+  Eigen::Matrix3d H;      // Σ_C K a aᵀ
+  Eigen::Vector3d g;      // Σ_C K h a + Mg e_z = (M_x, M_y, Mg − ΣF_z)
+  Lanes<4>::M changed{};  // per lane, minus the count of feet whose flag changed
+  [[nodiscard]] bool settled() const { return !core::any(changed); }
 };
 
 // The sums of one pass, per lane. Ten accumulators: with the temporaries of a step they fit the
@@ -121,19 +123,19 @@ struct Sums {
   s.gz += wh;
 }
 
-// The quadratic model of the sums (the contact changes are the caller's).
-[[gnu::always_inline]] inline Cell cell_of(const Sums& s, double Mg) {
+// The quadratic model of the sums, written into c (in place: a returned Cell is copied into the
+// loop's, thirteen moves on the serial path of every step).
+[[gnu::always_inline]] inline void cell_of(const Sums& s, double Mg, Cell& c) {
   const Sums::V first = core::lane_sums(s.k, s.y, s.x, s.yy);
   const Sums::V second = core::lane_sums(s.yx, s.xx, s.gy, s.gx);
   const double sy = first[1];
   const double sx = first[2];
   const double syx = second[0];
-  Cell c;
   c.H << first[3], syx, sy,  //
       syx, second[1], sx,    //
       sy, sx, first[0];
   c.g << second[2], second[3], Lanes<4>::sum(s.gz) + Mg;
-  return c;
+  c.changed = s.changes;
 }
 
 // Feet j … j + 3 of a pass at v (see pass()).
@@ -150,18 +152,16 @@ struct Sums {
   accumulate(s, L::select(touching, L::load(R.in[kK] + j)), y, x, h);
 }
 
-// One pass over the feet at v, four at a time: the feet with h_j < threshold (by default −noise,
-// Rows::noise: the outputs' contact convention) make the cell; their flags are stored in Rows::on
-// and compared with the previous ones.
-[[gnu::always_inline]] inline Cell pass(const Rows& R, const Eigen::Vector3d& v, double Mg,
-                                        double threshold) {
+// One pass over the feet at v, four at a time, into c: the feet with h_j < threshold (by default
+// −noise, Rows::noise: the outputs' contact convention) make the cell; their flags are stored in
+// Rows::on and compared with the previous ones.
+[[gnu::always_inline]] inline void pass(const Rows& R, const Eigen::Vector3d& v, double Mg,
+                                        double threshold, Cell& c) {
   Sums s;
   for (Eigen::Index j = 0; j < R.cols; j += 4) {  // the rows' length is a multiple of four
     add_feet(R, j, v, threshold, s);
   }
-  Cell c = cell_of(s, Mg);
-  c.changes = -static_cast<double>(s.changes[0] + s.changes[1] + s.changes[2] + s.changes[3]);
-  return c;
+  cell_of(s, Mg, c);
 }
 
 // The outputs at a certified v, four feet at a time: the contact flags of the last pass and
@@ -185,7 +185,7 @@ struct Sums {
     core::store_flags(contact, n, j, on);
     core::store_padded(Fz, n, j, L::select(on, -L::load(R.in[kK] + j) * h));
   }
-  return (near[0] | near[1] | near[2] | near[3]) != 0;
+  return core::any(near);
 }
 
 // dv = −H⁻¹ g, solved in the scaled state ũ = D v, D = diag(L, L, 1) (il = 1/L) (H̃ = D⁻¹ H D⁻¹,
@@ -285,14 +285,17 @@ Eigen::Vector3d null_part(const Rows& R, int n, const Cell& cell, const Eigen::V
 // nothing stops the tilt (the robot tips), or the CoM is over the contacts' line or point (no
 // tilt: a line or point support), or kMaxTilts tilts did not give a definite cell.
 constexpr int kMaxTilts = 3;
-bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double L, double il,
-               Cell& cell, Eigen::Vector3d& dv) {
+// (The caller passes copies of its state and cell and takes the step as the result: a reference to
+// its own would make it keep them in memory, a store and a reload on the serial path of every
+// step, tilted or not.)
+std::optional<Eigen::Vector3d> tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg,
+                                         double L, double il, Cell cell) {
   const Eigen::Vector3d scale(L, L, 1.0);  // scaled state ũ = D v (spring_support.cpp)
   Eigen::Vector3d at = v;
   for (int tilt = 0; tilt < kMaxTilts; ++tilt) {
     const Eigen::Vector3d g_null = null_part(R, n, cell, scale);
     if (!(g_null.norm() > kFlatTilt * Mg)) {
-      return false;  // nothing to tilt: a line or point support under the CoM
+      return std::nullopt;  // nothing to tilt: a line or point support under the CoM
     }
     const Eigen::Vector3d d = (-g_null).cwiseQuotient(scale);
     // The first foot in the air to touch down along at + t d (contacts keep their heights).
@@ -310,19 +313,19 @@ bool tilt_step(const Rows& R, int n, const Eigen::Vector3d& v, double Mg, double
       }
     }
     if (first < 0) {
-      return false;  // the robot tips: Alg. 1 reports it
+      return std::nullopt;  // the robot tips: Alg. 1 reports it
     }
     at += t * d;
     // The cell of the contacts and the foot that touched down (at its plane now, h ≈ 0).
     const double h_first =
         R.in[kY][first] * at(0) + R.in[kMinusX][first] * at(1) + (R.in[kQz][first] + at(2));
-    cell = pass(R, at, Mg, std::nextafter(std::max(h_first, -R.noise(at)), kInf));
+    pass(R, at, Mg, std::nextafter(std::max(h_first, -R.noise(at)), kInf), cell);
+    Eigen::Vector3d dv;
     if (newton_step(cell, il, dv)) {
-      dv += at - v;
-      return true;
+      return Eigen::Vector3d(dv + (at - v));
     }
   }
-  return false;
+  return std::nullopt;
 }
 
 // Writes the feet into the rows (the padding feet far above the ground, K = 0) and sums the
@@ -395,20 +398,26 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  Cell cell = cell_of(start, Mg);  // the all-feet cell
-  double changes = 0.0;
-  double last = kInf;  // residual after the previous step, if its contact set was consistent
+  Cell cell;
+  cell_of(start, Mg, cell);  // the all-feet cell
+  Lanes<4>::M changes{};     // per lane, minus the contact changes of all steps
+  double last = kInf;        // residual after the previous step, if its contact set was consistent
   for (int step = 1; step <= kMaxSteps; ++step) {
     Eigen::Vector3d dv;
-    if (!newton_step(cell, il, dv) && (step == 1 || !tilt_step(R, n, v, Mg, L, il, cell, dv))) {
-      summary.newton_steps = step - 1;
-      return false;
+    if (!newton_step(cell, il, dv)) {
+      const std::optional<Eigen::Vector3d> tilted =
+          step == 1 ? std::nullopt : tilt_step(R, n, Eigen::Vector3d(v), Mg, L, il, cell);
+      if (!tilted) {
+        summary.newton_steps = step - 1;
+        return false;
+      }
+      dv = *tilted;
     }
     v += dv;
-    cell = pass(R, v, Mg, -R.noise(v));
-    changes += cell.changes;
+    pass(R, v, Mg, -R.noise(v), cell);
+    changes += cell.changed;
     summary.newton_steps = step;
-    if (cell.changes != 0.0) {
+    if (!cell.settled()) {
       last = kInf;
       continue;
     }
@@ -423,7 +432,7 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
       frame.z = v(2);
       summary.status = SupportSummary::Status::kBalanced;
       summary.route = SupportSummary::Route::kNewton;
-      summary.iterations = static_cast<int>(changes);
+      summary.iterations = static_cast<int>(-(changes[0] + changes[1] + changes[2] + changes[3]));
       summary.residual = r;
       return true;
     }

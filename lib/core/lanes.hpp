@@ -92,6 +92,12 @@ struct Lanes {
   return ((lane0 + lane1) + lane2) + lane3;
 }
 
+/// Whether any lane of the mask is set (the lanes ORed: no conversion, no per-lane branch).
+[[gnu::always_inline]] inline bool any(Lanes<4>::M m) {
+  const Lanes<4>::M halves = m | __builtin_shufflevector(m, m, 2, 3, 0, 1);
+  return (halves[0] | halves[1]) != 0;
+}
+
 /// Whether |p_i| ≤ bound for all n values: a lane mask ANDed over the values, four at a time (a
 /// comparison with NaN is false, so NaN and infinity fail without a test of their own), the last
 /// four overlapping the ones before them (testing a value twice is harmless). Branch-free.

@@ -132,5 +132,21 @@ TEST(Lanes, AllWithinFailsOnAnyValueOutsideTheBoundOrNotFinite) {
   }
 }
 
+TEST(Lanes, AnyIsSetExactlyWhenSomeLaneIsNonZero) {
+  // Every pattern of four lanes, each 0, all ones (a comparison's mask) or another non-zero value
+  // (a count), against the lane-by-lane test.
+  const std::int64_t values[3] = {0, -1, 7};
+  for (int pattern = 0; pattern < 81; ++pattern) {
+    Lanes<4>::M m{};
+    bool expected = false;
+    int code = pattern;
+    for (int i = 0; i < 4; ++i, code /= 3) {
+      m[i] = values[code % 3];
+      expected = expected || m[i] != 0;
+    }
+    EXPECT_EQ(any(m), expected) << "pattern " << pattern;
+  }
+}
+
 }  // namespace
 }  // namespace slipwalk::core
