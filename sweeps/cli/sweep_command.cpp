@@ -34,6 +34,7 @@ struct SweepCommand {
   bool no_timing = false;
   std::string data = default_data();
   std::string shard;
+  CLI::Option* shard_option = nullptr;  // given at all: `--shard ""` is a bad k/n, not none
   bool mpi = false;
   int coordinator_jobs = -1;
   long long max_points = -1;
@@ -67,7 +68,8 @@ struct SweepCommand {
     options.max_points = max_points;
     options.progress = &std::cerr;
     options.progress_interval_s = progress_interval_s;
-    options.shard = shard.empty() ? sweeps::Shard{} : sweeps::parse_shard(shard, "--shard");
+    const bool sharded = shard_option != nullptr && shard_option->count() > 0;
+    options.shard = sharded ? sweeps::parse_shard(shard, "--shard") : sweeps::Shard{};
     return options;
   }
 
@@ -207,10 +209,11 @@ void add_sweep_command(CLI::App& app) {
   sub->add_option("--data", cmd->data, "data folder (default <source>/data)");
   own.push_back(sub->add_flag("--no-timing", cmd->no_timing,
                               "write wall_s as 0, so that reruns give byte-identical files"));
-  own.push_back(sub->add_option(
+  cmd->shard_option = sub->add_option(
       "--shard", cmd->shard,
       "run the k-th of n shards (k/n; the ids dealt in turn in a fixed shuffled order) "
-      "into <name>.shard-k-of-n.csv; join them with `sweep merge`"));
+      "into <name>.shard-k-of-n.csv; join them with `sweep merge`");
+  own.push_back(cmd->shard_option);
   own.push_back(sub->add_flag("--mpi", cmd->mpi,
                               "run over MPI ranks (implied under mpirun or srun); an error if "
                               "this build has no MPI"));

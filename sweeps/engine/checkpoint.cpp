@@ -1,6 +1,7 @@
 #include "sweeps/engine/checkpoint.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -77,6 +78,31 @@ std::mutex& timed_points_mutex() {
 
 std::string timing_line(bool timing) { return std::string("#timing,") + (timing ? "1" : "0"); }
 
+// A point's end mark in a checkpoint, "#done,<id>,<failed: 0 or 1>,<message>": the id, the flag
+// and where the message starts. False for a malformed line (std::from_chars: no sign, no blanks,
+// an overflow fails), which then marks nothing finished.
+bool parse_done(const std::string& line, long long& id, bool& failed, std::size_t& message) {
+  const char* const begin = line.data();
+  const char* const end = begin + line.size();
+  constexpr std::size_t kTag = 6;  // "#done,"
+  if (line.size() <= kTag) {
+    return false;
+  }
+  const auto parsed_id = std::from_chars(begin + kTag, end, id);
+  if (parsed_id.ec != std::errc() || parsed_id.ptr == end || *parsed_id.ptr != ',') {
+    return false;
+  }
+  int flag = -1;
+  const auto parsed_flag = std::from_chars(parsed_id.ptr + 1, end, flag);
+  if (parsed_flag.ec != std::errc() || parsed_flag.ptr == end || *parsed_flag.ptr != ',' ||
+      (flag != 0 && flag != 1)) {
+    return false;
+  }
+  failed = flag == 1;
+  message = static_cast<std::size_t>(parsed_flag.ptr + 1 - begin);
+  return true;
+}
+
 FinishedPoints read_partial(const std::filesystem::path& path, const std::string& header,
                             const std::string& print, bool timing, long long n_points) {
   const std::string text = core::read_input_file(path, "a sweep checkpoint", kMaxCheckpointBytes);
@@ -115,10 +141,9 @@ FinishedPoints read_partial(const std::filesystem::path& path, const std::string
       continue;
     }
     long long id = -1;
-    int failed = 0;
-    int consumed = 0;
-    if (std::sscanf(line.c_str(), "#done,%lld,%d,%n", &id, &failed, &consumed) >= 2 &&
-        consumed > 0 && id >= 0 && id < n_points) {
+    bool failed = false;
+    std::size_t consumed = 0;
+    if (parse_done(line, id, failed, consumed) && id >= 0 && id < n_points) {
       // Every row of the point must carry its id.
       const std::string prefix = std::to_string(id) + ",";
       bool ok = true;
@@ -126,7 +151,7 @@ FinishedPoints read_partial(const std::filesystem::path& path, const std::string
         ok = ok && rows.compare(p, prefix.size(), prefix) == 0;
       }
       if (ok) {
-        done[id] = Finished{rows, failed != 0, line.substr(static_cast<std::size_t>(consumed))};
+        done[id] = Finished{rows, failed, line.substr(consumed)};
       }
     }
     rows.clear();
@@ -162,12 +187,19 @@ std::vector<char> shard_members(std::size_t points, const Shard& shard) {
 std::string Shard::text() const { return std::to_string(index) + "/" + std::to_string(count); }
 
 Shard parse_shard(const std::string& text, const std::string& option) {
+  // Two plain decimal integers around one '/', nothing else (std::from_chars: no sign, no
+  // blanks, an overflow is an error, not a clamped value).
   long long k = 0;
   long long n = 0;
-  int consumed = 0;
-  if (std::sscanf(text.c_str(), "%lld/%lld%n", &k, &n, &consumed) != 2 ||
-      static_cast<std::size_t>(consumed) != text.size() || n < 1 || n > kMaxShards || k < 1 ||
-      k > n) {
+  const std::size_t slash = text.find('/');
+  const auto whole = [&text](std::size_t from, std::size_t to, long long& value) {
+    const char* const first = text.data() + from;
+    const char* const last = text.data() + to;
+    const auto [end, error] = std::from_chars(first, last, value);
+    return first != last && error == std::errc() && end == last;
+  };
+  if (slash == std::string::npos || !whole(0, slash, k) || !whole(slash + 1, text.size(), n) ||
+      n < 1 || n > kMaxShards || k < 1 || k > n) {
     throw core::InputError(option,
                            "expected k/n with 1 <= k <= n <= " + std::to_string(kMaxShards) +
                                " (the k-th of n shards), "

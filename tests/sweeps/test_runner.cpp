@@ -2,6 +2,7 @@
 // failed points recorded, the sidecar, and the command line (`slipwalk sweep`, `reproduce`).
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -173,6 +174,47 @@ TEST(Runner, InterruptedThenResumedIsByteIdentical) {
     EXPECT_FALSE(std::filesystem::exists(last.partial));
     EXPECT_EQ(nlohmann::json::parse(read_text(last.sidecar)).at("resumed_point_count"), 26);
   }
+}
+
+TEST(Runner, CorruptEndMarksInACheckpointResumeTheirPointsAsUnfinished) {
+  // A point counts as finished only under a well-formed `#done,<id>,<0|1>,<message>` line: an
+  // overflowing or signed id, another flag or a missing comma is read as no mark, so its rows are
+  // dropped and the point is run again (never a clamped or wrapped id).
+  const PreparedSweep sweep = prepared();
+  const ScratchDir full;
+  const std::string reference = read_text(run(sweep, options(full.path(), 2)).csv);
+  const ScratchDir d;
+  RunOptions o = options(d.path(), 1);
+  o.max_points = 17;
+  const RunSummary first = run(sweep, o);
+  ASSERT_FALSE(first.complete);
+  std::string text = read_text(first.partial);
+  const std::vector<std::function<std::string(const std::string&)>> spoil = {
+      [](const std::string& id) { return "#done,99999999999999999999" + id + ",0,"; },
+      [](const std::string& id) { return "#done," + id + ",2,"; },
+      [](const std::string& id) { return "#done,+" + id + ",0,"; },
+      [](const std::string& id) { return "#done," + id + ",0"; },
+  };
+  std::size_t at = 0;
+  for (const auto& bad : spoil) {
+    at = text.find("\n#done,", at);
+    ASSERT_NE(at, std::string::npos);
+    const std::size_t begin = at + 1;
+    const std::size_t end = text.find('\n', begin);
+    const std::size_t id_end = text.find(',', begin + 6);
+    const std::string id = text.substr(begin + 6, id_end - begin - 6);
+    const std::string mark = bad(id);
+    text.replace(begin, end - begin, mark);
+    at = begin + mark.size();
+  }
+  write_text(first.partial, text);
+  o.resume = true;
+  o.max_points = -1;
+  const RunSummary last = run(sweep, o);
+  EXPECT_TRUE(last.complete);
+  EXPECT_EQ(last.resumed, 17 - static_cast<long long>(spoil.size()));
+  EXPECT_EQ(last.computed, 48 - last.resumed);
+  EXPECT_EQ(read_text(last.csv), reference);
 }
 
 TEST(Runner, ResumeWithTimingDiffersOnlyInWallTime) {

@@ -410,6 +410,12 @@ TEST(ShardsCli, BadShardAndMergeOptionsExitTwoWritingNothing) {
            {"sweep", s, "--data", data, "--shard", "x"},
            {"sweep", s, "--data", data, "--shard", "1/0"},
            {"sweep", s, "--data", data, "--shard", "1/"},
+           // Given but empty is a bad k/n, not "no shard" (which would run the whole sweep).
+           {"sweep", s, "--data", data, "--shard", ""},
+           // Nothing but two decimal integers: no blanks, no sign, no overflow clamped.
+           {"sweep", s, "--data", data, "--shard", " 1/2"},
+           {"sweep", s, "--data", data, "--shard", "+1/2"},
+           {"sweep", s, "--data", data, "--shard", "1/99999999999999999999"},
        }) {
     std::string line;
     for (const auto& a : args) {
