@@ -123,8 +123,7 @@ struct Sums {
   s.gz += wh;
 }
 
-// The quadratic model of the sums, written into c (in place: a returned Cell is copied into the
-// loop's, thirteen moves on the serial path of every step).
+// The quadratic model of the sums, written into c (the Newton loop's own cell, in place).
 [[gnu::always_inline]] inline void cell_of(const Sums& s, double Mg, Cell& c) {
   const Sums::V first = core::lane_sums(s.k, s.y, s.x, s.yy);
   const Sums::V second = core::lane_sums(s.yx, s.xx, s.gy, s.gx);
