@@ -117,7 +117,7 @@ struct Lanes {
     ok &= L::abs(L::load(p + i)) <= limit;
   }
   ok &= L::abs(L::load(p + n - 4)) <= limit;
-  return (ok[0] & ok[1] & ok[2] & ok[3]) != 0;
+  return !any(~ok);  // every lane set (a lane is all ones or all zeros)
 }
 
 // Loading the feet of a pass four at a time, group j … j + 3 of n feet. Where the group is not
