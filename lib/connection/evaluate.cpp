@@ -9,8 +9,9 @@ void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw la
   // 1. Which feet touch and what they carry (§3.3).
   contact::spring_support(robot, frame);
   // 2. The viscous system M x = −b of eq. 3.20, assembled and factorized once: it gives the local
-  //    connection A whatever the law, and the viscous-Coulomb velocity.
-  const friction::ViscousSystem system(robot, frame);
+  //    connection A whatever the law, and the viscous-Coulomb velocity. It reads the feet from the
+  //    rows the support just left (the same values, padded).
+  const friction::ViscousSystem system(robot, frame, friction::FeetSource::kSupportRows);
   local_connection(robot, frame, system);
   // 3. The friction law's balance: body velocity, foot forces, summary (§3.4).
   switch (law) {

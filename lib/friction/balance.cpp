@@ -93,13 +93,17 @@ Contacts viscous_balance_general(const contact::Robot& robot, contact::Frame& fr
 using Row = contact::ViscousScratch::Row;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-}  // namespace
-
 // The isotropic assembly (every foot G = I, the usual robot), which also leaves the feet as rows in
 // frame.viscous (contact/robot.hpp) with their weights c_k. Returns false, with nothing assembled,
-// for an anisotropic robot.
-SLIPWALK_CLONES bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame,
-                                          Eigen::Matrix3d& M, Eigen::Vector3d& b, Contacts& out) {
+// for an anisotropic robot. kFromSupport: q_x, q_y, the contact flags and F_z are read from the
+// padded rows the support's Newton route left in frame.support_newton (the same values: its
+// certified outputs were written from them), four feet at a time with no partial last group and no
+// conversion of the flags; otherwise from the frame's own (3 × N, chars, N).
+template <bool kFromSupport>
+[[gnu::always_inline]] inline bool viscous_balance_rows_of(const contact::Robot& robot,
+                                                           contact::Frame& frame,
+                                                           Eigen::Matrix3d& M, Eigen::Vector3d& b,
+                                                           Contacts& out) {
   using L = core::Lanes<4>;
   using V = L::V;
   const Eigen::Index n = frame.legs();
@@ -120,6 +124,7 @@ SLIPWALK_CLONES bool viscous_balance_rows(const contact::Robot& robot, contact::
   const double* const Fz = frame.Fz.data();
   const double* const mu = robot.mu.data();
   const char* const contact = frame.contact.data();
+  const contact::SupportNewtonScratch& W = frame.support_newton;
   double* const weights = frame.work_n.data();
   V L2{};
   V active{};
@@ -131,11 +136,22 @@ SLIPWALK_CLONES bool viscous_balance_rows(const contact::Robot& robot, contact::
     V dx;
     V dy;
     V dz;
-    core::load_columns3(q, n, j, x, y, z);
+    V fz;
+    L::M down;
+    if constexpr (kFromSupport) {
+      y = L::load(W.qy.data() + j);
+      x = -L::load(W.minus_qx.data() + j);
+      fz = L::load(W.Fz.data() + j);
+      down = L::load(W.on.data() + j);
+    } else {
+      core::load_columns3(q, n, j, x, y, z);
+      fz = core::load_padded(Fz, n, j);
+      down = core::load_flags(contact, n, j);
+    }
     core::load_columns3(qd, n, j, dx, dy, dz);
     // friction_weight(): c = μ F_z for a foot in contact with finite positive c, else 0.
-    const V cm = core::load_padded(mu, n, j) * core::load_padded(Fz, n, j);
-    const L::M on = core::load_flags(contact, n, j) & (cm > 0.0) & (cm < kInfinity);
+    const V cm = core::load_padded(mu, n, j) * fz;
+    const L::M on = down & (cm > 0.0) & (cm < kInfinity);
     const V c = L::select(on, cm);
     core::store_padded(weights, n, j, c);
     L::store(r[Row::kC] + j, c);
@@ -171,7 +187,17 @@ SLIPWALK_CLONES bool viscous_balance_rows(const contact::Robot& robot, contact::
   return true;
 }
 
-namespace {
+SLIPWALK_CLONES bool viscous_balance_frame_rows(const contact::Robot& robot, contact::Frame& frame,
+                                                Eigen::Matrix3d& M, Eigen::Vector3d& b,
+                                                Contacts& out) {
+  return viscous_balance_rows_of<false>(robot, frame, M, b, out);
+}
+
+SLIPWALK_CLONES bool viscous_balance_support_rows(const contact::Robot& robot,
+                                                  contact::Frame& frame, Eigen::Matrix3d& M,
+                                                  Eigen::Vector3d& b, Contacts& out) {
+  return viscous_balance_rows_of<true>(robot, frame, M, b, out);
+}
 
 struct ForceLanes {
   using V = core::Lanes<4>::V;
@@ -228,9 +254,19 @@ SLIPWALK_CLONES ForceSums viscous_forces_rows(contact::Frame& frame, double v0, 
 }
 
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
-                         Eigen::Vector3d& b) {
+                         Eigen::Vector3d& b, bool from_support) {
   Contacts out;
-  if (frame.viscous.fits(frame.legs()) && viscous_balance_rows(robot, frame, M, b, out)) {
+  const int n = frame.legs();
+  if (!frame.viscous.fits(n)) {
+    return viscous_balance_general(robot, frame, M, b);
+  }
+  // The support's rows, where its Newton route wrote this frame's outputs from them (the route of
+  // this call: spring_support sets it on every call) and they have the viscous rows' length.
+  const bool support_rows =
+      from_support && frame.support.route == contact::SupportSummary::Route::kNewton &&
+      frame.support_newton.holds(n) && frame.support_newton.qy.cols() == frame.viscous.rows.cols();
+  if (support_rows ? viscous_balance_support_rows(robot, frame, M, b, out)
+                   : viscous_balance_frame_rows(robot, frame, M, b, out)) {
     return out;
   }
   return viscous_balance_general(robot, frame, M, b);

@@ -200,8 +200,10 @@ void viscous_system(const contact::Robot& robot, const contact::Frame& frame, do
 /// For an isotropic robot (every w_k = 0) the feet are also left as rows in frame.viscous
 /// (contact/robot.hpp, ViscousScratch), which the force pass of the viscous-Coulomb solve reads
 /// (Contacts::rows says so).
+/// With from_support, an isotropic frame whose support the Newton route certified is read from the
+/// rows that route left (friction::FeetSource::kSupportRows, viscous_system.hpp).
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
-                         Eigen::Vector3d& b);
+                         Eigen::Vector3d& b, bool from_support = false);
 
 /// The sums over the feet of a viscous-Coulomb force pass: Σ F_k, Σ (q_k × F_k)_z, the
 /// dissipation −Σ F_k·u_k and the size of the terms that cancel, Σ c_k ‖G_k‖ (‖q̇_k‖ + ‖J_k x‖).
@@ -217,11 +219,6 @@ struct ForceSums {
 /// whose rows viscous_balance left (Contacts::rows), four feet at a time: written to frame.Fxy,
 /// summed as ForceSums (balance.cpp).
 ForceSums viscous_forces_rows(contact::Frame& frame, double v0, double v1, double om);
-
-/// viscous_balance's isotropic route (balance.cpp): false, with M, b and out not written, for an
-/// anisotropic robot. The frame's rows must fit it (ViscousScratch::fits).
-bool viscous_balance_rows(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
-                          Eigen::Vector3d& b, Contacts& out);
 
 /// Writes v_body from scaled coordinates.
 inline void set_velocity(contact::Frame& frame, const Eigen::Vector3d& y, double L) {

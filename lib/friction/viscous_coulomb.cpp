@@ -128,10 +128,11 @@ void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vect
 
 }  // namespace
 
-ViscousSystem::ViscousSystem(const contact::Robot& robot, contact::Frame& frame)
+ViscousSystem::ViscousSystem(const contact::Robot& robot, contact::Frame& frame, FeetSource feet)
     : weights_(frame.work_n.data()) {
   Eigen::Matrix3d M;
-  contacts_ = detail::viscous_balance(robot, frame, M, b_);  // c_k in work_n
+  contacts_ = detail::viscous_balance(robot, frame, M, b_,
+                                      feet == FeetSource::kSupportRows);  // c_k in work_n
   solver_.factorize(M);
 }
 

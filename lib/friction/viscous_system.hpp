@@ -15,13 +15,25 @@
 
 namespace slipwalk::friction {
 
+/// Where ViscousSystem reads the feet's positions, contact flags and loads from.
+enum class FeetSource {
+  kFrame,  ///< frame.q, frame.contact and frame.Fz: any frame
+  /// The same values as the padded rows the spring support's Newton route left in
+  /// frame.support_newton (contact/robot.hpp), read four feet at a time without a partial last
+  /// group, where that route certified the frame (frame.support.route, else as kFrame). Only
+  /// right after contact::spring_support on this frame, with q, contact and Fz untouched since:
+  /// connection::evaluate.
+  kSupportRows,
+};
+
 /// M and b of eq. 3.20 for one frame, with M factorized. Built from frame.q, frame.qdot,
 /// frame.contact and frame.Fz (contact::spring_support first); one pass over the feet, no
 /// allocation. Building it writes c_k to the frame's scratch (frame.work_n), so it describes that
 /// frame until another solver runs on it.
 class ViscousSystem {
  public:
-  ViscousSystem(const contact::Robot& robot, contact::Frame& frame);
+  ViscousSystem(const contact::Robot& robot, contact::Frame& frame,
+                FeetSource feet = FeetSource::kFrame);
 
   /// c_k = μ_k F_z,k of foot k, N; 0 for a foot in the air or without friction.
   [[nodiscard]] double weight(int k) const { return weights_[k]; }

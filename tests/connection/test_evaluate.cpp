@@ -71,6 +71,37 @@ TEST(ConnectionEvaluate, IsSpringSupportThenTheFrictionLaw) {
   }
 }
 
+TEST(ConnectionEvaluate, ReadsTheSupportsRowsToTheSameBitsAtEveryLegCount) {
+  // evaluate() assembles the viscous system from the padded rows the support's Newton route left
+  // (friction::FeetSource::kSupportRows); the stages by hand read the frame's q, contact and F_z.
+  // Every count of legs modulo four (a full last group of four, or one, two, three feet in it),
+  // feet lifted at random so that the contact flags vary within a group.
+  std::mt19937 rng(3);
+  std::bernoulli_distribution lifted(0.3);
+  for (const int n : {3, 4, 5, 6, 7, 8, 13, 50}) {
+    const contact::Robot robot = contact::uniform_robot(n, 1000.0, 0.8, 10.0);
+    int newton = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+      contact::Frame f = hexapod_frame(robot, rng);
+      for (int k = 0; k < n; ++k) {
+        f.q(2, k) += lifted(rng) ? 0.2 : 0.0;
+      }
+      contact::Frame g = f;
+      evaluate(robot, f, FrictionLaw::kViscousCoulomb);
+      contact::spring_support(robot, g);
+      newton += g.support.route == contact::SupportSummary::Route::kNewton ? 1 : 0;
+      friction::solve_viscous_coulomb(robot, g);
+      local_connection(robot, g);
+      EXPECT_EQ(f.contact, g.contact) << n << " legs";
+      EXPECT_EQ((f.v_body - g.v_body).norm(), 0.0) << n << " legs";
+      EXPECT_EQ((f.Fxy - g.Fxy).norm(), 0.0) << n << " legs";
+      EXPECT_EQ((f.A - g.A).norm(), 0.0) << n << " legs";
+      EXPECT_EQ(f.friction.residual, g.friction.residual) << n << " legs";
+    }
+    EXPECT_GT(newton, 20) << n << " legs: the rows are read only where the Newton route certified";
+  }
+}
+
 TEST(ConnectionEvaluate, SymmetricRobotPushingBackwardsMovesForward) {
   // Six legs on a circle, all on the ground with equal loads, all sweeping backwards at 0.1 m/s:
   // every law gives v = (0.1, 0, 0).

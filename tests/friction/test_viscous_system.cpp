@@ -1,7 +1,8 @@
 // friction::ViscousSystem, the viscous balance M x = −b of eq. 3.20 assembled and factorized once.
 // Oracles: M and b summed by hand from their definition (friction/balance.hpp,
 // M = Σ c_k J_kᵀ G_k J_k, b = Σ c_k J_kᵀ G_k q̇_k with J_k = [I | S q_k]), the Moore–Penrose
-// conditions when the contacts are one point, and solve_viscous_coulomb(robot, frame) to the bit.
+// conditions when the contacts are one point, solve_viscous_coulomb(robot, frame) to the bit, and
+// the frame's own feet to the bit where the system reads the support's rows.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -9,6 +10,7 @@
 #include <random>
 
 #include "contact/robot.hpp"
+#include "contact/spring_support.hpp"
 #include "friction/solvers.hpp"
 #include "friction/viscous_system.hpp"
 
@@ -101,6 +103,42 @@ TEST(ViscousSystem, SolveFromTheSystemIsTheSolveToTheBit) {
       EXPECT_EQ(c.frame.friction.unique, g.friction.unique);
     }
   }
+}
+
+// FeetSource::kSupportRows reads the rows of the support's last Newton route, so it must fall
+// back to the frame's own where the support's last call took Alg. 1's path: the rows then still
+// hold an earlier frame's feet.
+TEST(ViscousSystem, ReadsTheSupportsRowsOnlyWhereItsNewtonRouteWroteTheFrame) {
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  const contact::Robot robot = contact::uniform_robot(6, 1000.0, 0.8, 10.0);
+  contact::Frame f(robot);
+  for (int k = 0; k < 6; ++k) {
+    const double a = 2.0 * M_PI * k / 6.0;
+    f.q.col(k) << 0.3 * std::cos(a), 0.3 * std::sin(a), -0.1 + 0.01 * U(rng);
+    f.qdot.col(k) << 0.1 * U(rng), 0.1 * U(rng), 0.0;
+  }
+  contact::spring_support(robot, f);
+  ASSERT_EQ(f.support.route, contact::SupportSummary::Route::kNewton);
+  const ViscousSystem newton_rows(robot, f, FeetSource::kSupportRows);
+  const ViscousSystem own(robot, f, FeetSource::kFrame);
+  EXPECT_EQ((newton_rows.inverse() - own.inverse()).norm(), 0.0);
+
+  // Another frame, supported by Alg. 1 only: the Newton rows are stale.
+  f.q.row(0) *= 0.5;
+  f.q.row(1) *= 1.5;
+  contact::SupportOptions path_only;
+  path_only.newton = false;
+  contact::spring_support(robot, f, path_only);
+  ASSERT_EQ(f.support.route, contact::SupportSummary::Route::kPath);
+  contact::Frame g = f;
+  const ViscousSystem after_path(robot, f, FeetSource::kSupportRows);
+  const ViscousSystem by_frame(robot, g, FeetSource::kFrame);
+  EXPECT_EQ((after_path.inverse() - by_frame.inverse()).norm(), 0.0);
+  solve_viscous_coulomb(robot, f, after_path);
+  solve_viscous_coulomb(robot, g, by_frame);
+  EXPECT_EQ((f.v_body - g.v_body).norm(), 0.0);
+  EXPECT_EQ((f.Fxy - g.Fxy).norm(), 0.0);
 }
 
 TEST(ViscousSystem, ContactsAtOnePointGiveThePseudoInverse) {
