@@ -127,20 +127,32 @@ namespace {
 
 }  // namespace
 
-void check_frame(const Robot& robot, const Frame& frame) {
+namespace {
+
+// check_frame, with or without the positions' range test.
+void check(const Robot& robot, const Frame& frame, bool positions) {
   const int n = robot.legs();
   if (frame.q.cols() != n || frame.qdot.cols() != n) {
     throw core::InputError("q", "has " + std::to_string(frame.q.cols()) + " feet, the robot " +
                                     std::to_string(n) + " legs");
   }
   // One pass per matrix, four values at a time (the ranges are symmetric), and a loop only to
-  // name the culprit.
-  const bool inside = detail::within(frame.q.data(), frame.q.size(), limits::kPosition.hi) &&
-                      detail::within(frame.qdot.data(), frame.qdot.size(), limits::kVelocity.hi) &&
-                      limits::kYaw.contains(frame.theta);
+  // name the culprit (the first in the frame's order, whichever test failed).
+  const bool inside =
+      (!positions || detail::within(frame.q.data(), frame.q.size(), limits::kPosition.hi)) &&
+      detail::within(frame.qdot.data(), frame.qdot.size(), limits::kVelocity.hi) &&
+      limits::kYaw.contains(frame.theta);
   if (!inside) [[unlikely]] {
     name_out_of_range(frame);
   }
+}
+
+}  // namespace
+
+void check_frame(const Robot& robot, const Frame& frame) { check(robot, frame, true); }
+
+void check_frame_except_positions(const Robot& robot, const Frame& frame) {
+  check(robot, frame, false);
 }
 
 }  // namespace slipwalk::contact

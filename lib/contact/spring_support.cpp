@@ -449,7 +449,9 @@ const char* status_name(SupportSummary::Status status) {
 }
 
 void spring_support(const Robot& robot, Frame& frame, const SupportOptions& options) {
-  check_frame(robot, frame);
+  // The range of q is tested by the Newton route's first pass, and by check_frame below where
+  // that route does not certify (it certifies only feet in range): no pass of its own.
+  check_frame_except_positions(robot, frame);
   SupportSummary& summary = frame.support;
   summary.status = Status::kBalanced;
   summary.route = SupportSummary::Route::kPath;
@@ -465,6 +467,7 @@ void spring_support(const Robot& robot, Frame& frame, const SupportOptions& opti
   if (options.newton && options.path == nullptr && detail::support_by_newton(robot, frame)) {
     return;
   }
+  check_frame(robot, frame);
 
   Search s(robot, frame);
   const int limit = options.max_iterations > 0 ? options.max_iterations

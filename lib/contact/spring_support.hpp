@@ -58,8 +58,8 @@ struct SupportOptions {
 
 /// Fills frame.alpha, beta, z, contact, Fz and frame.support from frame.q. Never throws on
 /// degenerate input (it is recorded in frame.support); throws core::InputError only through
-/// check_frame for malformed frames. Does not allocate (except to append to options.path, and a
-/// message for an unusual status).
+/// check_frame for malformed frames (the outputs are then unspecified). Does not allocate (except
+/// to append to options.path, and a message for an unusual status).
 void spring_support(const Robot& robot, Frame& frame, const SupportOptions& options = {});
 
 }  // namespace slipwalk::contact

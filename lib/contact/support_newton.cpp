@@ -403,8 +403,16 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
   Cell cell;
   cell_of(start, Mg, cell);  // the all-feet cell
-  Lanes<4>::M changes{};     // per lane, minus the contact changes of all steps
-  double last = kInf;        // residual after the previous step, if its contact set was consistent
+  // check_frame's range test of q, on the way: the largest |q_x|, |q_y|, |q_z| within
+  // limits::kPosition (an infinity is the largest), and no NaN, which the maxima skip but the
+  // all-feet sums Σ K q_y, Σ K q_x and Σ K q_z carry (0 · NaN is NaN). Else the caller's
+  // check_frame names the culprit.
+  if (!(std::max({size(0), size(1), size(2)}) <= limits::kPosition.hi) ||
+      std::isnan(cell.H(2, 0) + cell.H(2, 1) + cell.g(2))) {
+    return false;
+  }
+  Lanes<4>::M changes{};  // per lane, minus the contact changes of all steps
+  double last = kInf;     // residual after the previous step, if its contact set was consistent
   for (int step = 1; step <= kMaxSteps; ++step) {
     Eigen::Vector3d dv;
     if (!newton_step(cell, il, dv)) {

@@ -232,6 +232,36 @@ TEST(FrameRanges, CheckFrameRefusesEveryOutOfRangeEntryAtEveryPlaceAndEveryLegCo
   }
 }
 
+TEST(FrameRanges, SpringSupportRefusesEveryOutOfRangeFootAtEveryPlaceAndEveryLegCount) {
+  // The support tests q's range in its Newton route's first pass (check_frame after it only where
+  // that route does not certify): every entry of q and q̇ at every leg count, on frames that route
+  // certifies when they are in range (feet on a circle, all down).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double bad[] = {std::nan(""), kInf, -kInf, 1.0000001e3, -2e3, 1e300};
+  for (int n = 3; n <= 9; ++n) {
+    const Robot robot = uniform_robot(n);
+    Frame frame(robot);
+    for (int j = 0; j < n; ++j) {
+      const double a = 2.0 * M_PI * j / n;
+      frame.q.col(j) << 0.3 * std::cos(a), 0.3 * std::sin(a), -0.1;
+    }
+    frame.qdot.setZero();
+    const Frame good = frame;
+    ASSERT_NO_THROW(spring_support(robot, frame)) << n << " legs";
+    ASSERT_EQ(frame.support.route, SupportSummary::Route::kNewton) << n << " legs";
+    for (Eigen::Index at = 0; at < frame.q.size(); ++at) {
+      for (const double x : bad) {
+        for (const bool position : {true, false}) {
+          frame = good;
+          (position ? frame.q : frame.qdot).data()[at] = x;  // both ranges are ±1e3
+          EXPECT_THROW(spring_support(robot, frame), core::InputError)
+              << n << " legs, " << (position ? "q" : "qdot") << " entry " << at << " = " << x;
+        }
+      }
+    }
+  }
+}
+
 TEST(FrameRanges, ValidateStatesTheRangeOfEveryRobotField) {
   const auto message = [](const Robot& r) {
     try {
