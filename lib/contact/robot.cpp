@@ -87,7 +87,6 @@ SupportNewtonScratch::SupportNewtonScratch(int legs)
       minus_qx(FootRow::Zero(padded_feet(legs))),
       qz(FootRow::Zero(padded_feet(legs))),
       K(FootRow::Zero(padded_feet(legs))),
-      Fz(FootRow::Zero(padded_feet(legs))),
       on(FootFlags::Zero(padded_feet(legs))) {}
 
 CoulombScratch::CoulombScratch(int legs)

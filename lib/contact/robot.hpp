@@ -156,8 +156,6 @@ struct SupportNewtonScratch {
   FootRow minus_qx;  ///< −q_x,j, m: the coefficient of β in h_j
   FootRow qz;        ///< q_z,j, m
   FootRow K;         ///< K_j, N/m
-  FootRow Fz;        ///< F_z,j = −K_j h_j of a certified state (0 for a foot in the air and the
-                     ///< padding), N: frame.Fz as a row, written with it
   FootFlags on;      ///< all ones (−1) where foot j was in contact (h_j < 0) at the last pass,
                      ///< else 0: the pass's lane mask as it is
 
@@ -165,7 +163,7 @@ struct SupportNewtonScratch {
   [[nodiscard]] bool holds(int legs) const {
     const Eigen::Index n = qy.cols();
     return n >= legs && n % 4 == 0 && minus_qx.cols() == n && qz.cols() == n && K.cols() == n &&
-           Fz.cols() == n && on.cols() == n;
+           on.cols() == n;
   }
 };
 

@@ -78,7 +78,6 @@ using core::Lanes;
 struct Rows {
   const double* in[kRows];
   std::int64_t* on;
-  double* Fz;  // the loads as a row (SupportNewtonScratch::Fz), written with the outputs
   Eigen::Index cols;
   Eigen::Vector3d size;  // max |q_y|, max |q_x|, max |q_z| over the feet
   // The rounding error of every foot's height at v: h_j = a_j·v + q_z,j is computed to about
@@ -165,8 +164,7 @@ struct Sums {
 }
 
 // The outputs at a certified v, four feet at a time: the contact flags of the last pass and
-// the loads of eq. 3.7, F_z = −K h (also as the padded row Rows::Fz, which the viscous assembly of
-// connection::evaluate reads with the other rows). Returns whether a foot is within kNearPlane ×
+// the loads of eq. 3.7, F_z = −K h. Returns whether a foot is within kNearPlane ×
 // the heights' rounding error (Rows::noise) of its plane, either side (h² ≤ margin², no abs needed;
 // the padding feet are far above): then the outputs are the path search's to write over. (Plain
 // pointers: a store through char* may alias anything, and through the frame's members it would
@@ -183,10 +181,8 @@ struct Sums {
                 (L::load(R.in[kQz] + j) + L::splat(v(2)));
     near |= h * h <= L::splat(margin * margin);
     const L::M on = L::load(R.on + j);
-    const V load = L::select(on, -L::load(R.in[kK] + j) * h);
     core::store_flags(contact, n, j, on);
-    core::store_padded(Fz, n, j, load);
-    L::store(R.Fz + j, load);
+    core::store_padded(Fz, n, j, L::select(on, -L::load(R.in[kK] + j) * h));
   }
   return core::any(near);
 }
@@ -396,7 +392,7 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
   const double il = 1.0 / L;
   const double Mg = robot.Mg;
   const double inv_mg = 1.0 / Mg;
-  const Rows R{{row[kY], row[kMinusX], row[kQz], row[kK]}, W.on.data(), W.Fz.data(), cols, size};
+  const Rows R{{row[kY], row[kMinusX], row[kQz], row[kK]}, W.on.data(), cols, size};
 
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;

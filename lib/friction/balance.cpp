@@ -95,10 +95,11 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // The isotropic assembly (every foot G = I, the usual robot), which also leaves the feet as rows in
 // frame.viscous (contact/robot.hpp) with their weights c_k. Returns false, with nothing assembled,
-// for an anisotropic robot. kFromSupport: q_x, q_y, the contact flags and F_z are read from the
-// padded rows the support's Newton route left in frame.support_newton (the same values: its
-// certified outputs were written from them), four feet at a time with no partial last group and no
-// conversion of the flags; otherwise from the frame's own (3 × N, chars, N).
+// for an anisotropic robot. kFromSupport: q_x, q_y and the contact flags are read from the padded
+// rows the support's Newton route left in frame.support_newton (the same values: its certified
+// outputs were written from them), four feet at a time with no partial last group and no
+// conversion of the flags; otherwise from the frame's own (3 × N, chars). F_z from the frame (a
+// row of the support's own would be one more buffer per frame to bring into the cache).
 template <bool kFromSupport>
 [[gnu::always_inline]] inline bool viscous_balance_rows_of(const contact::Robot& robot,
                                                            contact::Frame& frame,
@@ -136,21 +137,18 @@ template <bool kFromSupport>
     V dx;
     V dy;
     V dz;
-    V fz;
     L::M down;
     if constexpr (kFromSupport) {
       y = L::load(W.qy.data() + j);
       x = -L::load(W.minus_qx.data() + j);
-      fz = L::load(W.Fz.data() + j);
       down = L::load(W.on.data() + j);
     } else {
       core::load_columns3(q, n, j, x, y, z);
-      fz = core::load_padded(Fz, n, j);
       down = core::load_flags(contact, n, j);
     }
     core::load_columns3(qd, n, j, dx, dy, dz);
     // friction_weight(): c = μ F_z for a foot in contact with finite positive c, else 0.
-    const V cm = core::load_padded(mu, n, j) * fz;
+    const V cm = core::load_padded(mu, n, j) * core::load_padded(Fz, n, j);
     const L::M on = down & (cm > 0.0) & (cm < kInfinity);
     const V c = L::select(on, cm);
     core::store_padded(weights, n, j, c);

@@ -18,11 +18,11 @@ namespace slipwalk::friction {
 /// Where ViscousSystem reads the feet's positions, contact flags and loads from.
 enum class FeetSource {
   kFrame,  ///< frame.q, frame.contact and frame.Fz: any frame
-  /// The same values as the padded rows the spring support's Newton route left in
-  /// frame.support_newton (contact/robot.hpp), read four feet at a time without a partial last
-  /// group, where that route certified the frame (frame.support.route, else as kFrame). Only
-  /// right after contact::spring_support on this frame, with q, contact and Fz untouched since:
-  /// connection::evaluate.
+  /// q and the contact flags as the padded rows the spring support's Newton route left in
+  /// frame.support_newton (contact/robot.hpp: the same values), read four feet at a time without
+  /// a partial last group, where that route certified the frame (frame.support.route, else as
+  /// kFrame); F_z from the frame. Only right after contact::spring_support on this frame, with q,
+  /// contact and Fz untouched since: connection::evaluate.
   kSupportRows,
 };
 
