@@ -126,7 +126,6 @@ template <bool kFromSupport>
   const double* const mu = robot.mu.data();
   const char* const contact = frame.contact.data();
   const contact::SupportNewtonScratch& W = frame.support_newton;
-  double* const weights = frame.work_n.data();
   V L2{};
   V active{};
   V sc{}, scx{}, scy{}, scrr{}, scdx{}, scdy{}, scm{};
@@ -151,7 +150,6 @@ template <bool kFromSupport>
     const V cm = core::load_padded(mu, n, j) * core::load_padded(Fz, n, j);
     const L::M on = down & (cm > 0.0) & (cm < kInfinity);
     const V c = L::select(on, cm);
-    core::store_padded(weights, n, j, c);
     L::store(r[Row::kC] + j, c);
     L::store(r[Row::kQx] + j, x);
     L::store(r[Row::kQy] + j, y);

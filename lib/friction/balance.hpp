@@ -194,12 +194,11 @@ void viscous_system(const contact::Robot& robot, const contact::Frame& frame, do
 }
 
 /// prepare() and viscous_system() in one pass, for callers that need G only (not W): the contact
-/// summary, M̃ and b̃ (φ ≡ 1) in scaled coordinates, and c_k in frame.work_n (0 for a foot
-/// without friction). L is known only at the end of the pass, so the lever column is summed
-/// unscaled (S q) and scaled afterwards.
-/// For an isotropic robot (every w_k = 0) the feet are also left as rows in frame.viscous
-/// (contact/robot.hpp, ViscousScratch), which the force pass of the viscous-Coulomb solve reads
-/// (Contacts::rows says so).
+/// summary, M̃ and b̃ (φ ≡ 1) in scaled coordinates, and c_k (0 for a foot without friction). L is
+/// known only at the end of the pass, so the lever column is summed unscaled (S q) and scaled
+/// afterwards. For an isotropic robot (every w_k = 0) the feet and c_k are left as rows in
+/// frame.viscous (contact/robot.hpp, ViscousScratch), which the force pass of the viscous-Coulomb
+/// solve reads (Contacts::rows says so); otherwise c_k is left in frame.work_n.
 /// With from_support, an isotropic frame whose support the Newton route certified is read from the
 /// rows that route left (friction::FeetSource::kSupportRows, viscous_system.hpp).
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,

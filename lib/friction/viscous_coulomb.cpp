@@ -120,7 +120,7 @@ template <bool kLoaded>
 void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vector3d& load) {
   Eigen::Matrix3d M;
   Eigen::Vector3d b;
-  const detail::Contacts cs = detail::viscous_balance(robot, frame, M, b);  // c_k in work_n
+  const detail::Contacts cs = detail::viscous_balance(robot, frame, M, b);
   detail::Psd3 solver;
   solver.factorize(M);
   finish<kLoaded>(robot, frame, solver, cs, b, load);
@@ -131,8 +131,10 @@ void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vect
 ViscousSystem::ViscousSystem(const contact::Robot& robot, contact::Frame& frame, FeetSource feet)
     : weights_(frame.work_n.data()) {
   Eigen::Matrix3d M;
-  contacts_ = detail::viscous_balance(robot, frame, M, b_,
-                                      feet == FeetSource::kSupportRows);  // c_k in work_n
+  contacts_ = detail::viscous_balance(robot, frame, M, b_, feet == FeetSource::kSupportRows);
+  if (contacts_.rows) {
+    weights_ = frame.viscous.rows.row(contact::ViscousScratch::Row::kC).data();
+  }
   solver_.factorize(M);
 }
 

@@ -28,8 +28,9 @@ enum class FeetSource {
 
 /// M and b of eq. 3.20 for one frame, with M factorized. Built from frame.q, frame.qdot,
 /// frame.contact and frame.Fz (contact::spring_support first); one pass over the feet, no
-/// allocation. Building it writes c_k to the frame's scratch (frame.work_n), so it describes that
-/// frame until another solver runs on it.
+/// allocation. Building it writes c_k to the frame's scratch (the row c_k of frame.viscous for an
+/// isotropic robot, else frame.work_n), so it describes that frame until another solver runs on
+/// it.
 class ViscousSystem {
  public:
   ViscousSystem(const contact::Robot& robot, contact::Frame& frame,
@@ -53,7 +54,7 @@ class ViscousSystem {
   friend void solve_viscous_coulomb(const contact::Robot& robot, contact::Frame& frame,
                                     const ViscousSystem& system);
 
-  const double* weights_;      ///< frame.work_n's data, where the assembly left c_k
+  const double* weights_;      ///< where the assembly left c_k (frame.viscous or frame.work_n)
   detail::Contacts contacts_;  ///< active feet, lever scale L, anisotropy
   detail::Psd3 solver_;        ///< M̃ factorized (scaled coordinates)
   Eigen::Vector3d b_;          ///< b̃ (scaled coordinates)
