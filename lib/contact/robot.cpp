@@ -124,10 +124,6 @@ namespace {
   core::require_in("theta", frame.theta, limits::kYaw);
 }
 
-}  // namespace
-
-namespace {
-
 // check_frame, with or without the positions' range test.
 void check(const Robot& robot, const Frame& frame, bool positions) {
   const int n = robot.legs();

@@ -164,9 +164,9 @@ struct Sums {
 }
 
 // The outputs at a certified v, four feet at a time: the contact flags of the last pass and
-// the loads of eq. 3.7, F_z = −K h. Returns whether a foot is within kNearPlane ×
-// the heights' rounding error (Rows::noise) of its plane, either side (h² ≤ margin², no abs needed;
-// the padding feet are far above): then the outputs are the path search's to write over. (Plain
+// the loads of eq. 3.7, F_z = −K h. Returns whether a foot is within kNearPlane × the heights'
+// rounding error (Rows::noise) of its plane, either side (h² ≤ margin², no abs needed; the
+// padding feet are far above): then the outputs are the path search's to write over. (Plain
 // pointers: a store through char* may alias anything, and through the frame's members it would
 // reload every pointer at every foot.)
 [[gnu::always_inline]] inline bool loads_unless_near(const Rows& R, const Eigen::Vector3d& v,
