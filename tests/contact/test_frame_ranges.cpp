@@ -203,12 +203,29 @@ TEST(FrameRanges, LegCountsOutsideOneToTheLimitAreRefused) {
   EXPECT_EQ(parse_robot_json(R"({"legs": 100000})", "r.json").legs(), limits::kMaxLegs);
 }
 
+// Every entry of q and q̇ of an admitted frame set in turn to each value outside their ranges (both
+// ±1e3: NaN, ±infinity, just beyond, far beyond): `call` must refuse each with core::InputError.
+template <class Call>
+void expect_every_entry_refused(const Frame& admitted, Call call) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double bad[] = {std::nan(""), kInf, -kInf, 1.0000001e3, -2e3, 1e300};
+  for (Eigen::Index at = 0; at < admitted.q.size(); ++at) {
+    for (const double x : bad) {
+      for (const bool position : {true, false}) {
+        Frame frame = admitted;
+        (position ? frame.q : frame.qdot).data()[at] = x;
+        EXPECT_THROW(call(frame), core::InputError)
+            << admitted.legs() << " legs, " << (position ? "q" : "qdot") << " entry " << at << " = "
+            << x;
+      }
+    }
+  }
+}
+
 TEST(FrameRanges, CheckFrameRefusesEveryOutOfRangeEntryAtEveryPlaceAndEveryLegCount) {
   // check_frame tests four values at a time with an overlapping last group: every entry of q and
   // q̇, at every leg count up to nine (3N from 3 to 27 values: every remainder), is tested, and
   // the bounds themselves are admitted.
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  const double bad[] = {std::nan(""), kInf, -kInf, 1.0000001e3, -2e3, 1e300};
   for (int n = 1; n <= 9; ++n) {
     const Robot robot = uniform_robot(n);
     Frame frame(robot);
@@ -218,17 +235,7 @@ TEST(FrameRanges, CheckFrameRefusesEveryOutOfRangeEntryAtEveryPlaceAndEveryLegCo
     frame.q(1, 0) = limits::kPosition.lo;
     frame.qdot(2, n - 1) = limits::kVelocity.lo;
     ASSERT_NO_THROW(check_frame(robot, frame)) << n << " legs";
-    for (Eigen::Index at = 0; at < frame.q.size(); ++at) {
-      for (const double x : bad) {
-        for (Eigen::Matrix3Xd* m : {&frame.q, &frame.qdot}) {
-          const double keep = m->data()[at];
-          m->data()[at] = x;  // both ranges are ±1e3
-          EXPECT_THROW(check_frame(robot, frame), core::InputError)
-              << n << " legs, entry " << at << " = " << m->data()[at];
-          m->data()[at] = keep;
-        }
-      }
-    }
+    expect_every_entry_refused(frame, [&robot](const Frame& f) { check_frame(robot, f); });
   }
 }
 
@@ -236,8 +243,6 @@ TEST(FrameRanges, SpringSupportRefusesEveryOutOfRangeFootAtEveryPlaceAndEveryLeg
   // The support tests q's range in its Newton route's first pass (check_frame after it only where
   // that route does not certify): every entry of q and q̇ at every leg count, on frames that route
   // certifies when they are in range (feet on a circle, all down).
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  const double bad[] = {std::nan(""), kInf, -kInf, 1.0000001e3, -2e3, 1e300};
   for (int n = 3; n <= 9; ++n) {
     const Robot robot = uniform_robot(n);
     Frame frame(robot);
@@ -246,19 +251,10 @@ TEST(FrameRanges, SpringSupportRefusesEveryOutOfRangeFootAtEveryPlaceAndEveryLeg
       frame.q.col(j) << 0.3 * std::cos(a), 0.3 * std::sin(a), -0.1;
     }
     frame.qdot.setZero();
-    const Frame good = frame;
-    ASSERT_NO_THROW(spring_support(robot, frame)) << n << " legs";
-    ASSERT_EQ(frame.support.route, SupportSummary::Route::kNewton) << n << " legs";
-    for (Eigen::Index at = 0; at < frame.q.size(); ++at) {
-      for (const double x : bad) {
-        for (const bool position : {true, false}) {
-          frame = good;
-          (position ? frame.q : frame.qdot).data()[at] = x;  // both ranges are ±1e3
-          EXPECT_THROW(spring_support(robot, frame), core::InputError)
-              << n << " legs, " << (position ? "q" : "qdot") << " entry " << at << " = " << x;
-        }
-      }
-    }
+    Frame solved = frame;
+    ASSERT_NO_THROW(spring_support(robot, solved)) << n << " legs";
+    ASSERT_EQ(solved.support.route, SupportSummary::Route::kNewton) << n << " legs";
+    expect_every_entry_refused(frame, [&robot](Frame& f) { spring_support(robot, f); });
   }
 }
 
