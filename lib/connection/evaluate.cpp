@@ -5,9 +5,10 @@
 
 namespace slipwalk::connection {
 
-void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law) {
+void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law,
+              const contact::SupportOptions& support) {
   // 1. Which feet touch and what they carry (§3.3).
-  contact::spring_support(robot, frame);
+  contact::spring_support(robot, frame, support);
   // 2. The viscous system M x = −b of eq. 3.20, assembled and factorized once: it gives the local
   //    connection A whatever the law, and the viscous-Coulomb velocity. It reads the feet from the
   //    rows the support just left (the same values, padded).

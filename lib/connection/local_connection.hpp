@@ -22,6 +22,9 @@ enum class FrictionLaw { kViscousCoulomb, kCoulomb };
 /// One frame of the model: spring support, the local connection A (eq. 3.20 is defined by the
 /// viscous-Coulomb ansatz, so A is filled whatever the law), then the friction law's balance
 /// (v_body, Fxy, friction summary). The `slipwalk model` command and trajectories call this.
-void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law);
+/// support: the spring support's options (its warm start, for a frame that carries the previous
+/// frame's balance).
+void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law,
+              const contact::SupportOptions& support = {});
 
 }  // namespace slipwalk::connection

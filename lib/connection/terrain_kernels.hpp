@@ -14,6 +14,10 @@
 
 namespace slipwalk::connection {
 
+/// The spring support along a trajectory: each frame starts from the balance of the frame before
+/// (SupportOptions::warm_start), which the feet have moved little from in one step.
+inline constexpr contact::SupportOptions kTrajectorySupport{.warm_start = true};
+
 /// Flat ground: the ch. 3 model.
 struct FlatGround {
   void validate() const {}
@@ -21,7 +25,7 @@ struct FlatGround {
   template <class Law>
   void operator()(const contact::Robot& robot, contact::Frame& f, const core::Pose2& /*pose*/,
                   const Law& law) {
-    contact::spring_support(robot, f);
+    contact::spring_support(robot, f, kTrajectorySupport);
     law(robot, f);
   }
 };
@@ -48,7 +52,7 @@ struct SlopeGround {
     const Eigen::Vector2d c = terrain::support_offset(slope, pose.theta);
     saved = f.q.topRows<2>();
     f.q.topRows<2>().colwise() -= c;
-    contact::spring_support(support, f);
+    contact::spring_support(support, f, kTrajectorySupport);
     f.q.topRows<2>() = saved;
     // Gravity's planar component (body frame); it passes through the body's normal axis.
     const Eigen::Vector3d load = terrain::slope_load(slope, robot.Mg, pose.theta);
@@ -78,7 +82,7 @@ struct StairsGround {
                   const Law& law) {
     qy = f.q.row(1).transpose();
     terrain::to_stairs_support(stairs, pose, f, height);
-    contact::spring_support(robot, f);
+    contact::spring_support(robot, f, kTrajectorySupport);
     terrain::stairs_levers(f, qy);
     law(robot, f);
   }

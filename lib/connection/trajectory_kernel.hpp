@@ -29,6 +29,7 @@ TrajectorySummary integrate(const contact::Robot& robot, const FootKinematics& f
                             const TrajectoryOptions& options, E effects, TrajectoryData& data,
                             const TrajectorySink& sink) {
   detail::check_run(robot, feet, options, data, sink);
+  contact::forget_balance(data.frame);  // the support's warm start begins with this run
   effects.filter.validate();
   effects.residual.validate(robot.legs());
   effects.noise.validate();

@@ -448,11 +448,22 @@ const char* status_name(SupportSummary::Status status) {
   return "unknown";
 }
 
+void forget_balance(Frame& frame) {
+  frame.alpha = std::numeric_limits<double>::quiet_NaN();
+  frame.beta = frame.alpha;
+  frame.z = frame.alpha;
+}
+
 void spring_support(const Robot& robot, Frame& frame, const SupportOptions& options) {
   // The range of q is tested by the Newton route's first pass, and by check_frame below where
   // that route does not certify (it certifies only feet in range): no pass of its own.
   check_frame_except_positions(robot, frame);
   SupportSummary& summary = frame.support;
+  // A warm start needs a previous balance: a state the frame's last search certified or ended
+  // balanced on (checked before the summary is reset below).
+  const Vector3d previous(frame.alpha, frame.beta, frame.z);
+  const bool warm =
+      options.warm_start && summary.status == Status::kBalanced && previous.allFinite();
   summary.status = Status::kBalanced;
   summary.route = SupportSummary::Route::kPath;
   summary.iterations = 0;
@@ -464,7 +475,8 @@ void spring_support(const Robot& robot, Frame& frame, const SupportOptions& opti
   // Its certificate implies finite outputs (no end-of-solve check needed): a certified residual
   // ≤ 1e-10 makes ΣF_z = Mg − ∂U/∂z finite, a sum of the same non-negative products K_j h_j the
   // outputs hold, and a non-finite state fails the contact test of every foot (residual 1).
-  if (options.newton && options.path == nullptr && detail::support_by_newton(robot, frame)) {
+  if (options.newton && options.path == nullptr &&
+      detail::support_by_newton(robot, frame, warm ? &previous : nullptr)) {
     return;
   }
   check_frame(robot, frame);

@@ -48,6 +48,14 @@ struct SupportOptions {
   /// certifies (the unique minimizer of U); ignored when `path` is set, since only Alg. 1 has a
   /// path. false: always Alg. 1.
   bool newton = true;
+  /// Start the Newton route from the frame's previous balance (frame.alpha, beta, z, where
+  /// frame.support.status says kBalanced) and its contact set, instead of the all-feet cell at
+  /// zero tilt: along a trajectory the feet move little from frame to frame, the contact set is
+  /// usually the previous one, and one step certifies (two from the cold start where a foot is
+  /// lifted). The certificate is the same, so the result is the same minimizer to rounding (not
+  /// to the bit: another route to it); where the warm start does not certify, the cold start
+  /// runs. Ignored with `path` or without `newton`.
+  bool warm_start = false;
 };
 
 /// The default iteration limit for n legs (see SupportOptions::max_iterations).
@@ -61,5 +69,10 @@ struct SupportOptions {
 /// check_frame for malformed frames (the outputs are then unspecified). Does not allocate (except
 /// to append to options.path, and a message for an unusual status).
 void spring_support(const Robot& robot, Frame& frame, const SupportOptions& options = {});
+
+/// Makes the next warm-started spring_support of this frame start cold: for a frame that begins
+/// a new trajectory, whose last balance is another one's (frame.alpha, beta and z are NaN until
+/// the next search writes them).
+void forget_balance(Frame& frame);
 
 }  // namespace slipwalk::contact

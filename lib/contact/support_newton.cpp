@@ -19,6 +19,10 @@
 // where the CPU has it, else pairs of SSE2 registers: same operations, hence the same rounding —
 // the clone leaves out FMA for that), with no branch on data, and a 3 × 3 solve by cofactors (one
 // division). Its Newton system is solved in the scaled state (αL, βL, z) of spring_support.cpp.
+// Warm start (SupportOptions::warm_start): from a previous balance v0 and the feet below its plane
+// there. Along a trajectory that is usually the answer's cell already, so one step and its
+// confirming pass certify, where the all-feet start needs a second step whenever a foot is lifted
+// (a start is only a start: the certificate below does not depend on it).
 //
 // Certificate. Stop when the contact set read off the heights at v (the outputs' convention:
 // h_j < 0 beyond the rounding error of the heights, Rows::noise) equals the set the step to v was
@@ -327,14 +331,17 @@ std::optional<Eigen::Vector3d> tilt_step(const Rows& R, int n, const Eigen::Vect
   return std::nullopt;
 }
 
-// Writes the feet into the rows (the padding feet far above the ground, K = 0) and sums the
-// all-feet cell at v = 0 (every foot with K > 0 counts; h = q_z), four feet at a time: q is 3 × N
-// column-major (core::load_columns3). Also the largest |q_y|, |q_x|, |q_z| (Rows::size) and q_x² +
-// q_y² over the feet.
+// Writes the feet into the rows (the padding feet far above the ground, K = 0) and sums the start
+// cell at v0, four feet at a time: q is 3 × N column-major (core::load_columns3). Cold (v0 = 0):
+// the all-feet cell, every foot with K > 0 (h = q_z). Warm: the feet with h_j(v0) < 0, the contact
+// set of the previous balance where v0 is that balance and the feet moved little. Also the largest
+// |q_y|, |q_x|, |q_z| (Rows::size) and q_x² + q_y² over the feet. A NaN coordinate reaches the sums
+// either way: a foot out of the cell enters them with weight 0, and 0 · NaN is NaN.
+template <bool kWarm>
 [[gnu::always_inline]] inline Sums rows_and_start(const Robot& robot, const Frame& frame,
-                                                  double* const* row, std::int64_t* on,
-                                                  Eigen::Index cols, Eigen::Vector3d& size,
-                                                  double& size2) {
+                                                  const Eigen::Vector3d& v0, double* const* row,
+                                                  std::int64_t* on, Eigen::Index cols,
+                                                  Eigen::Vector3d& size, double& size2) {
   using L = Lanes<4>;
   using V = L::V;
   const Eigen::Index n = frame.q.cols();
@@ -357,13 +364,20 @@ std::optional<Eigen::Vector3d> tilt_step(const Rows& R, int n, const Eigen::Vect
     L::store(row[kMinusX] + j, minus_x);
     L::store(row[kQz] + j, z_row);
     L::store(row[kK] + j, k);
-    L::store(on + j, k > L::splat(0.0));
     max_y = max_y < L::abs(y) ? L::abs(y) : max_y;
     max_x = max_x < L::abs(x) ? L::abs(x) : max_x;
     max_z = max_z < L::abs(z) ? L::abs(z) : max_z;
     const V r2 = x * x + y * y;
     max_r2 = max_r2 < r2 ? r2 : max_r2;
-    accumulate(s, k, y, minus_x, z);  // the all-feet cell at v = 0: h = q_z, weight K
+    if constexpr (kWarm) {
+      const V h = y * L::splat(v0(0)) + minus_x * L::splat(v0(1)) + (z_row + L::splat(v0(2)));
+      const L::M touching = h < L::splat(0.0);
+      L::store(on + j, touching);
+      accumulate(s, L::select(touching, k), y, minus_x, h);
+    } else {
+      L::store(on + j, k > L::splat(0.0));
+      accumulate(s, k, y, minus_x, z);  // the all-feet cell at v = 0: h = q_z, weight K
+    }
   }
   size.setZero();
   size2 = 0.0;
@@ -374,20 +388,18 @@ std::optional<Eigen::Vector3d> tilt_step(const Rows& R, int n, const Eigen::Vect
   return s;
 }
 
-}  // namespace
-
-SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
+// The route from v0 (0 cold; warm: the previous balance, see rows_and_start).
+template <bool kWarm>
+[[gnu::always_inline]] inline bool newton_route(const Robot& robot, Frame& frame,
+                                                const Eigen::Vector3d& v0) {
   const int n = frame.legs();
   SupportNewtonScratch& W = frame.support_newton;
-  if (!W.holds(n)) {
-    return false;  // a frame resized by hand: leave it to the path search
-  }
   const Eigen::Index cols = W.qy.cols();
-  // ---- the feet as rows, and the all-feet cell at v = 0, in one pass ------------------------
+  // ---- the feet as rows, and the start cell at v0, in one pass --------------------------------
   double* const row[kRows] = {W.qy.data(), W.minus_qx.data(), W.qz.data(), W.K.data()};
   Eigen::Vector3d size;
   double size2 = 0.0;
-  const Sums start = rows_and_start(robot, frame, row, W.on.data(), cols, size, size2);
+  const Sums start = rows_and_start<kWarm>(robot, frame, v0, row, W.on.data(), cols, size, size2);
   const double L = size2 > 0.0 ? std::sqrt(size2) : 1.0;
   const double il = 1.0 / L;
   const double Mg = robot.Mg;
@@ -396,9 +408,9 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
 
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v = v0;
   Cell cell;
-  cell_of(start, Mg, cell);  // the all-feet cell
+  cell_of(start, Mg, cell);  // the start cell
   // check_frame's range test of q, on the way: the largest |q_x|, |q_y|, |q_z| within
   // limits::kPosition (an infinity is the largest), and no NaN, which the maxima skip but the
   // all-feet sums Σ K q_y, Σ K q_x and Σ K q_z carry (0 · NaN is NaN). Else the caller's
@@ -408,7 +420,12 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     return false;
   }
   Lanes<4>::M changes{};  // per lane, minus the contact changes of all steps
-  double last = kInf;     // residual after the previous step, if its contact set was consistent
+  // The residual after the previous step, if its contact set was consistent. A warm start's cell
+  // is the set read off the heights at v0 (h < 0; the outputs' convention differs only for feet
+  // within rounding of their plane, which carry rounding), so its residual counts as one: from a
+  // balance the first step's residual is rounding that a step no longer halves, and that step
+  // certifies.
+  double last = kWarm ? residual(cell, inv_mg, il) : kInf;
   for (int step = 1; step <= kMaxSteps; ++step) {
     Eigen::Vector3d dv;
     if (!newton_step(cell, il, dv)) {
@@ -446,6 +463,27 @@ SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
     last = r;
   }
   return false;
+}
+
+}  // namespace
+
+SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame,
+                                       const Eigen::Vector3d* warm) {
+  if (!frame.support_newton.holds(frame.legs())) {
+    return false;  // a frame resized by hand: leave it to the path search
+  }
+  if (warm == nullptr) {
+    return newton_route<false>(robot, frame, Eigen::Vector3d::Zero());
+  }
+  if (newton_route<true>(robot, frame, *warm)) {
+    return true;
+  }
+  // The previous balance was no start for these feet (fewer than three of them down there, or
+  // no certificate from it): the cold start, with the steps of both counted.
+  const int warm_steps = frame.support.newton_steps;
+  const bool certified = newton_route<false>(robot, frame, Eigen::Vector3d::Zero());
+  frame.support.newton_steps += warm_steps;
+  return certified;
 }
 
 }  // namespace slipwalk::contact::detail

@@ -16,6 +16,9 @@ namespace slipwalk::contact::detail {
 /// line, a cycling contact set, too many steps, a foot at its plane at the end):
 /// frame.support.newton_steps says how far it got; contact and Fz may be written, and all outputs
 /// are the path search's to write. Uses frame.support_newton as scratch; does not allocate.
-bool support_by_newton(const Robot& robot, Frame& frame);
+/// warm: the state (α, β, z) of a previous balance to start from (SupportOptions::warm_start),
+/// or nullptr for the cold start at the all-feet cell; a warm start that does not certify is
+/// followed by the cold one (newton_steps counts both).
+bool support_by_newton(const Robot& robot, Frame& frame, const Eigen::Vector3d* warm);
 
 }  // namespace slipwalk::contact::detail

@@ -43,30 +43,33 @@ struct VectorTypes<2> {  // one SSE2 register: the Coulomb solver's passes, two 
 };
 
 /// W doubles side by side (W = 4; another width is one more VectorTypes entry): unaligned loads and
-/// stores, a broadcast, a masked select and the sum of the lanes, left to right.
+/// stores, a broadcast, a masked select and the sum of the lanes, left to right. Always inlined: a
+/// 32-byte vector passed to or returned from a call of the SSE2 clone goes through memory.
 template <int W>
 struct Lanes {
   using V = typename VectorTypes<W>::V;
   using M = typename VectorTypes<W>::M;
-  static V load(const double* p) {
+  [[gnu::always_inline]] static V load(const double* p) {
     V v;
     std::memcpy(&v, p, sizeof v);
     return v;
   }
-  static void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
-  static M load(const std::int64_t* p) {
+  [[gnu::always_inline]] static void store(double* p, V v) { std::memcpy(p, &v, sizeof v); }
+  [[gnu::always_inline]] static M load(const std::int64_t* p) {
     M m;
     std::memcpy(&m, p, sizeof m);
     return m;
   }
-  static void store(std::int64_t* p, M m) { std::memcpy(p, &m, sizeof m); }
-  static V splat(double x) { return V{} + x; }
-  static V select(M mask, V x) { return std::bit_cast<V>(std::bit_cast<M>(x) & mask); }
+  [[gnu::always_inline]] static void store(std::int64_t* p, M m) { std::memcpy(p, &m, sizeof m); }
+  [[gnu::always_inline]] static V splat(double x) { return V{} + x; }
+  [[gnu::always_inline]] static V select(M mask, V x) {
+    return std::bit_cast<V>(std::bit_cast<M>(x) & mask);
+  }
   /// |x| lane by lane: the sign bit cleared (NaN stays NaN).
-  static V abs(V x) {
+  [[gnu::always_inline]] static V abs(V x) {
     return std::bit_cast<V>(std::bit_cast<M>(x) & (M{} + std::numeric_limits<std::int64_t>::max()));
   }
-  static double sum(V v) {
+  [[gnu::always_inline]] static double sum(V v) {
     double s = v[0];  // not 0.0 + v[0]: that add is kept (it turns −0 into +0)
     for (int i = 1; i < W; ++i) {
       s += v[i];

@@ -1,6 +1,7 @@
 // The hand-written flat isotropic viscous kernel (reference_kernel.hpp).
 #include "scene/reference_kernel.hpp"
 
+#include "connection/terrain_kernels.hpp"
 #include "connection/trajectory_kernel.hpp"
 #include "contact/spring_support.hpp"
 #include "core/error.hpp"
@@ -14,6 +15,7 @@ connection::TrajectorySummary run_flat_viscous(const robots::Walker& walker,
                                                const connection::TrajectorySink& sink) {
   const contact::Robot& robot = walker.robot;
   connection::detail::check_run(robot, walker.feet, options, data, sink);
+  contact::forget_balance(data.frame);
   contact::Frame& f = data.frame;
   connection::TrajectorySummary summary;
   core::Pose2 pose = options.start;
@@ -23,7 +25,7 @@ connection::TrajectorySummary run_flat_viscous(const robots::Walker& walker,
       const double t = options.t0 + static_cast<double>(n) * options.dt;
       walker.feet(t, f.q, f.qdot);
       f.theta = pose.theta;
-      contact::spring_support(robot, f);
+      contact::spring_support(robot, f, connection::kTrajectorySupport);
       friction::solve_viscous_coulomb(robot, f);
       for (int k = 0; k < f.legs(); ++k) {
         data.slip(0, k) = f.v_body(0) - f.v_body(2) * f.q(1, k) + f.qdot(0, k);

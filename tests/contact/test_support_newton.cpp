@@ -228,4 +228,124 @@ TEST(SupportNewton, OvershootsTiltOntoTheNextFootAndEndWhereThePathEnds) {
   EXPECT_GT(tilted, 300);
 }
 
+// ---- the warm start (SupportOptions::warm_start) ------------------------------------------------
+
+// Solves the frame's current feet from its current state (warm) or from the all-feet cell.
+void solve_frame(const Robot& robot, Frame& f, bool warm) {
+  SupportOptions opt;
+  opt.warm_start = warm;
+  slipwalk::contact::spring_support(robot, f, opt);
+}
+
+// The warm start is a start only: where it certifies, the state is the cold start's to rounding,
+// on the path's oracle's terms (expect_same_state); frames of a walk whose feet moved a little
+// since the previous balance take fewer steps than from the all-feet cell.
+TEST(SupportNewton, AWarmStartEndsWhereTheColdStartEndsAlongAWalk) {
+  std::mt19937_64 rng(131);
+  long long warm_steps = 0;
+  long long cold_steps = 0;
+  int frames = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 3 + static_cast<int>(rng() % 30);
+    Scene s = random_supported(rng, n);
+    const Robot robot = s.robot();
+    Frame warm(robot);
+    warm.q = s.q;
+    slipwalk::contact::spring_support(robot, warm);  // the first frame: cold
+    if (warm.support.status != Status::kBalanced) {
+      continue;
+    }
+    const double step = 0.02 * size_of(s);
+    for (int frame = 0; frame < 10; ++frame) {
+      // The feet move a little, some up, some down by a fraction of the deepest compression.
+      const double sink = (warm.Fz.array() / s.K.array()).maxCoeff();
+      for (int j = 0; j < n; ++j) {
+        s.q(0, j) += uniform(rng, -step, step);
+        s.q(1, j) += uniform(rng, -step, step);
+        s.q(2, j) += uniform(rng, -0.2, 0.2) * sink;
+      }
+      warm.q = s.q;
+      const long long before = slipwalk::testing::allocation_count();
+      solve_frame(robot, warm, true);
+      if (warm.support.route == Route::kNewton) {
+        EXPECT_EQ(slipwalk::testing::allocation_count(), before);
+      }
+      const Solved cold = solve(s);
+      if (cold.frame.support.status != Status::kBalanced) {
+        break;  // the walk left the support polygon
+      }
+      SCOPED_TRACE("trial " + std::to_string(trial) + ", frame " + std::to_string(frame));
+      ASSERT_EQ(warm.support.status, Status::kBalanced);
+      expect_same_state(s, warm, cold.frame, 1e-11);
+      if (warm.support.route == Route::kNewton && cold.frame.support.route == Route::kNewton) {
+        warm_steps += warm.support.newton_steps;
+        cold_steps += cold.frame.support.newton_steps;
+        ++frames;
+      }
+    }
+  }
+  std::printf("%d frames: %.2f Newton steps warm, %.2f cold\n", frames,
+              static_cast<double>(warm_steps) / frames, static_cast<double>(cold_steps) / frames);
+  EXPECT_GT(frames, 1000);
+  EXPECT_LT(warm_steps * 4, cold_steps * 3);  // a quarter fewer steps at least
+}
+
+// From the frame's own balance the start cell is the answer's: one step (its residual is the
+// start's rounding, which it no longer halves), no contact change, and the same state to rounding.
+TEST(SupportNewton, AWarmStartFromTheFramesOwnBalanceCertifiesInOneStep) {
+  std::mt19937_64 rng(137);
+  int certified = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Scene s = random_supported(rng, 3 + static_cast<int>(rng() % 40));
+    const Solved cold = solve(s);
+    if (cold.frame.support.route != Route::kNewton) {
+      continue;
+    }
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    Frame f = cold.frame;
+    solve_frame(cold.robot, f, true);
+    EXPECT_EQ(f.support.route, Route::kNewton);
+    EXPECT_EQ(f.support.newton_steps, 1);
+    EXPECT_EQ(f.support.iterations, 0);
+    expect_same_state(s, f, cold.frame, 1e-13);
+    ++certified;
+  }
+  EXPECT_GT(certified, 250);
+}
+
+// A previous state the feet are nowhere near (the body far above them: no foot below its plane)
+// gives no start; the cold start then runs, to the same bits as without the warm start. So does a
+// frame whose balance was forgotten (a new run) or whose last search ended unbalanced.
+TEST(SupportNewton, AWarmStartWithoutAUsableBalanceIsTheColdStartToTheBit) {
+  std::mt19937_64 rng(139);
+  int compared = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Scene s = random_supported(rng, 3 + static_cast<int>(rng() % 40));
+    const Solved cold = solve(s);
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    for (int how = 0; how < 3; ++how) {
+      Frame f = cold.frame;
+      if (how == 0) {
+        f.z = 10.0 * height_scale(s, cold.frame);  // h_j = q_z,j + z > 0 for every foot
+        f.support.status = Status::kBalanced;
+      } else if (how == 1) {
+        slipwalk::contact::forget_balance(f);
+      } else {
+        f.support.status = Status::kUnsupported;
+      }
+      solve_frame(cold.robot, f, true);
+      EXPECT_EQ(f.support.status, cold.frame.support.status);
+      EXPECT_EQ(f.support.route, cold.frame.support.route);
+      EXPECT_EQ(f.support.newton_steps, cold.frame.support.newton_steps);
+      EXPECT_EQ(f.z, cold.frame.z);
+      EXPECT_EQ(f.alpha, cold.frame.alpha);
+      EXPECT_EQ(f.beta, cold.frame.beta);
+      EXPECT_EQ(f.Fz, cold.frame.Fz);
+      EXPECT_EQ(f.contact, cold.frame.contact);
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 900);
+}
+
 }  // namespace
