@@ -461,9 +461,9 @@ void spring_support(const Robot& robot, Frame& frame, const SupportOptions& opti
   SupportSummary& summary = frame.support;
   // A warm start needs a previous balance: a state the frame's last search certified or ended
   // balanced on (checked before the summary is reset below).
-  const Vector3d previous(frame.alpha, frame.beta, frame.z);
-  const bool warm =
-      options.warm_start && summary.status == Status::kBalanced && previous.allFinite();
+  const bool warm = options.warm_start && summary.status == Status::kBalanced &&
+                    std::isfinite(frame.alpha) && std::isfinite(frame.beta) &&
+                    std::isfinite(frame.z);
   summary.status = Status::kBalanced;
   summary.route = SupportSummary::Route::kPath;
   summary.iterations = 0;
@@ -476,7 +476,9 @@ void spring_support(const Robot& robot, Frame& frame, const SupportOptions& opti
   // ≤ 1e-10 makes ΣF_z = Mg − ∂U/∂z finite, a sum of the same non-negative products K_j h_j the
   // outputs hold, and a non-finite state fails the contact test of every foot (residual 1).
   if (options.newton && options.path == nullptr &&
-      detail::support_by_newton(robot, frame, warm ? &previous : nullptr)) {
+      (warm ? detail::support_by_newton_warm(robot, frame,
+                                             Vector3d(frame.alpha, frame.beta, frame.z))
+            : detail::support_by_newton(robot, frame))) {
     return;
   }
   check_frame(robot, frame);

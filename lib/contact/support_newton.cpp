@@ -394,6 +394,9 @@ template <bool kWarm>
                                                 const Eigen::Vector3d& v0) {
   const int n = frame.legs();
   SupportNewtonScratch& W = frame.support_newton;
+  if (!W.holds(n)) {
+    return false;  // a frame resized by hand: leave it to the path search
+  }
   const Eigen::Index cols = W.qy.cols();
   // ---- the feet as rows, and the start cell at v0, in one pass --------------------------------
   double* const row[kRows] = {W.qy.data(), W.minus_qx.data(), W.qz.data(), W.K.data()};
@@ -408,7 +411,10 @@ template <bool kWarm>
 
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;
-  Eigen::Vector3d v = v0;
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  if constexpr (kWarm) {
+    v = v0;
+  }
   Cell cell;
   cell_of(start, Mg, cell);  // the start cell
   // check_frame's range test of q, on the way: the largest |q_x|, |q_y|, |q_z| within
@@ -467,15 +473,13 @@ template <bool kWarm>
 
 }  // namespace
 
-SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame,
-                                       const Eigen::Vector3d* warm) {
-  if (!frame.support_newton.holds(frame.legs())) {
-    return false;  // a frame resized by hand: leave it to the path search
-  }
-  if (warm == nullptr) {
-    return newton_route<false>(robot, frame, Eigen::Vector3d::Zero());
-  }
-  if (newton_route<true>(robot, frame, *warm)) {
+SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
+  return newton_route<false>(robot, frame, Eigen::Vector3d::Zero());
+}
+
+SLIPWALK_CLONES bool support_by_newton_warm(const Robot& robot, Frame& frame,
+                                            const Eigen::Vector3d& v0) {
+  if (newton_route<true>(robot, frame, v0)) {
     return true;
   }
   // The previous balance was no start for these feet (fewer than three of them down there, or

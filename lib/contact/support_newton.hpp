@@ -16,9 +16,11 @@ namespace slipwalk::contact::detail {
 /// line, a cycling contact set, too many steps, a foot at its plane at the end):
 /// frame.support.newton_steps says how far it got; contact and Fz may be written, and all outputs
 /// are the path search's to write. Uses frame.support_newton as scratch; does not allocate.
-/// warm: the state (α, β, z) of a previous balance to start from (SupportOptions::warm_start),
-/// or nullptr for the cold start at the all-feet cell; a warm start that does not certify is
-/// followed by the cold one (newton_steps counts both).
-bool support_by_newton(const Robot& robot, Frame& frame, const Eigen::Vector3d* warm);
+bool support_by_newton(const Robot& robot, Frame& frame);
+
+/// The same from the state v0 = (α, β, z) of a previous balance (SupportOptions::warm_start): the
+/// start cell is the feet below its plane there. Where that start does not certify, the cold
+/// start above follows (support.newton_steps counts both).
+bool support_by_newton_warm(const Robot& robot, Frame& frame, const Eigen::Vector3d& v0);
 
 }  // namespace slipwalk::contact::detail

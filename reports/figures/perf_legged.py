@@ -289,6 +289,7 @@ def speedup(v: dict, data: Path) -> None:
     """The whole model against one MuJoCo step (Fig. 3.13's disk robots), where measured."""
     path = data / "ch3_peer" / "fig3_13a.csv"
     v.update(ps.speedup_target({}))
+    v.update(ps.cold_speedup(None))
     v["speedup_N"] = v["speedup_median"] = None
     v["speedup_missing"] = None
     if not path.is_file():
@@ -303,6 +304,7 @@ def speedup(v: dict, data: Path) -> None:
     v["speedup_N"] = sorted(by_n)
     v["speedup_median"] = [by_n[n] for n in sorted(by_n)]
     v.update(ps.speedup_target(by_n))
+    v.update(ps.cold_speedup(t))
 
 
 def read_machine(data: Path) -> tuple[dict | None, str | None]:

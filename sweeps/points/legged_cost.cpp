@@ -9,8 +9,9 @@
 // alternating tripod walking and turning (robots::bigant_tripod, its legs, mass and stiffness;
 // §3.5.1.1's frame rate; 3–6 feet down, the hand-overs included), solved in order as a
 // simulation would, each starting from the previous frame's answer: Coulomb warm-starts from it
-// (CoulombOptions::warm_start) and every method gets the previous v_body and static marks copied
-// in (the same copy for all, so the times compare). It then
+// (CoulombOptions::warm_start), the spring support from its balance (SupportOptions::warm_start,
+// in the support and the whole model), and every method gets the previous v_body, static marks
+// and balance copied in (the same copy for all, so the times compare). It then
 //  * solves every frame with classical Coulomb friction to a relative duality gap of 1e-14 (the
 //    reference; frames whose reference is not unique or not certified are left out of the error
 //    statistics and counted),
@@ -229,11 +230,16 @@ Frames make_frames(const CostInputs& in) {
 
 // --- solving, timing, errors ---------------------------------------------------------------------
 
-/// Along a trajectory, what frame `from` left for the next one (`to`): its body velocity and the
-/// Coulomb solver's static marks (allocation-free: the frames have the same legs).
+/// Along a trajectory, what frame `from` left for the next one (`to`): its body velocity, the
+/// Coulomb solver's static marks and the spring support's balance (allocation-free: the frames
+/// have the same legs).
 void carry(const contact::Frame& from, contact::Frame& to) {
   to.v_body = from.v_body;
   std::copy(from.work_idx.begin(), from.work_idx.end(), to.work_idx.begin());
+  to.alpha = from.alpha;
+  to.beta = from.beta;
+  to.z = from.z;
+  to.support.status = from.support.status;
 }
 
 void solve(const contact::Robot& robot, contact::Frame& f, const CostInputs& in) {
@@ -252,13 +258,14 @@ void solve(const contact::Robot& robot, contact::Frame& f, const CostInputs& in)
       break;
     }
     case Method::kSupport:
-      contact::spring_support(robot, f);
+      contact::spring_support(robot, f, contact::SupportOptions{.warm_start = in.trajectory});
       break;
     case Method::kConnection:
       connection::local_connection(robot, f);
       break;
     case Method::kModel:
-      connection::evaluate(robot, f, connection::FrictionLaw::kViscousCoulomb);
+      connection::evaluate(robot, f, connection::FrictionLaw::kViscousCoulomb,
+                           contact::SupportOptions{.warm_start = in.trajectory});
       break;
   }
 }

@@ -304,6 +304,17 @@ void BM_CoulombTrajectoryHexapod1e9(benchmark::State& state) {
       [&opt](const Robot& r, Frame& f) { slipwalk::friction::solve_coulomb(r, f, opt); });
 }
 
+// The whole model along the walk, its spring support started from the previous frame's balance
+// (warm:1, SupportOptions::warm_start, as connection::integrate runs it) or cold (warm:0).
+void BM_ModelTrajectoryHexapod(benchmark::State& state) {
+  Pool pool = make_trajectory_hexapod_pool();
+  const slipwalk::contact::SupportOptions support{.warm_start = state.range(0) != 0};
+  run(state, pool, [&support](const Robot& r, Frame& f) {
+    slipwalk::connection::evaluate(r, f, slipwalk::connection::FrictionLaw::kViscousCoulomb,
+                                   support);
+  });
+}
+
 void BM_CoulombTrajectoryHexapodCold1e9(benchmark::State& state) {
   Pool pool = make_trajectory_hexapod_pool();
   slipwalk::friction::CoulombOptions opt;
@@ -329,6 +340,7 @@ BENCHMARK(BM_ModelCoulomb)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ViscousTrajectoryHexapod)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombTrajectoryHexapod1e9)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombTrajectoryHexapodCold1e9)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_ModelTrajectoryHexapod)->ArgName("warm")->Arg(0)->Arg(1)->Unit(benchmark::kNanosecond);
 
 }  // namespace
 

@@ -178,6 +178,20 @@ class PerfLegged(unittest.TestCase):
         self.assertTrue(v["target_speedup_met"])
         self.assertEqual(v["speedup_N"], [3, 8, 16, 32])
         self.assertAlmostEqual(v["speedup_median"][0], 20.0)
+        self.assertIsNone(v["speedup_cold_min_from_N8"])  # no time_ours_cold_ns column
+
+    def test_the_cold_speedup_reads_the_cold_column_against_the_same_mujoco_step(self):
+        make(self.data)
+        path = self.data / "ch3_peer" / "fig3_13a.csv"
+        lines = path.read_text().splitlines()
+        # ours cold: twice the warm time at N = 8, the same elsewhere
+        rows = [line + "," + str(200.0 if line.split(",")[1] == "8" else 100.0)
+                for line in lines[1:]]
+        path.write_text("\n".join([lines[0] + ",time_ours_cold_ns", *rows]) + "\n")
+        _, v, _ = run(self.data, self.out)
+        self.assertAlmostEqual(v["speedup_min_from_N8"], 120.0)  # the target's: warm
+        self.assertAlmostEqual(v["speedup_cold_min_from_N8"], 75.0)  # 150 / 2 at N = 8
+        self.assertEqual(v["speedup_cold_min_at_N"], 8)
 
     def test_each_stage_sits_beside_its_limit_by_the_flops_table(self):
         make(self.data)
