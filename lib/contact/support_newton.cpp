@@ -485,7 +485,7 @@ SLIPWALK_CLONES bool support_by_newton_warm(const Robot& robot, Frame& frame,
   // The previous balance was no start for these feet (fewer than three of them down there, or
   // no certificate from it): the cold start, with the steps of both counted.
   const int warm_steps = frame.support.newton_steps;
-  const bool certified = newton_route<false>(robot, frame, Eigen::Vector3d::Zero());
+  const bool certified = support_by_newton(robot, frame);  // a call: this clone stays small
   frame.support.newton_steps += warm_steps;
   return certified;
 }
