@@ -279,6 +279,12 @@ def trajectory_ratio(v: dict, traj: dict) -> None:
     v["ratio_coulomb_viscous_hexapod_trajectory"] = r
     v["hexapod_trajectory_viscous_ns"] = tv["time_ns"] if tv else None
     v["hexapod_trajectory_coulomb_1e-09_ns"] = tc["time_ns"] if tc else None
+    # The support and the whole model along the walk, the support warm-started from the frame
+    # before (SupportOptions::warm_start), where measured.
+    for key in ("support", "model"):
+        row = traj.get(("hexapod", 6, key))
+        v[f"hexapod_trajectory_{key}_ns"] = row["time_ns"] if row else None
+        v[f"hexapod_trajectory_{key}_newton_steps"] = row.get("newton_steps_mean") if row else None
     v["ratio_target_sequence"] = "trajectory" if r is not None else "independent"
     target = r if r is not None else v.get("ratio_coulomb_viscous_hexapod")
     v["ratio_coulomb_viscous_target"] = target
