@@ -255,6 +255,13 @@ TEST(FrameRanges, SpringSupportRefusesEveryOutOfRangeFootAtEveryPlaceAndEveryLeg
     ASSERT_NO_THROW(spring_support(robot, solved)) << n << " legs";
     ASSERT_EQ(solved.support.route, SupportSummary::Route::kNewton) << n << " legs";
     expect_every_entry_refused(frame, [&robot](Frame& f) { spring_support(robot, f); });
+    // Warm-started from its own balance: the start cell is the feet below the plane there, and a
+    // foot out of it must still carry its NaN into the sums (weight 0 times NaN).
+    SupportOptions warm;
+    warm.warm_start = true;
+    ASSERT_NO_THROW(spring_support(robot, solved, warm)) << n << " legs";
+    ASSERT_EQ(solved.support.newton_steps, 1) << n << " legs";  // it was the warm route
+    expect_every_entry_refused(solved, [&](Frame& f) { spring_support(robot, f, warm); });
   }
 }
 
