@@ -30,23 +30,26 @@ def speedup_by_n(t, ours: str = "time_ours_ns") -> dict[int, float]:
     return out
 
 
+def smallest_from_n8(by_n: dict[int, float]) -> tuple[float | None, int | None]:
+    """The smallest median speed-up over N ≥ SPEEDUP_FROM_N and the N where it is (None, None
+    where no such N was measured)."""
+    over = {n: r for n, r in by_n.items() if n >= SPEEDUP_FROM_N}
+    if not over:
+        return None, None
+    n_min = min(over, key=over.get)
+    return over[n_min], n_min
+
+
 def speedup_target(by_n: dict[int, float]) -> dict:
     """The target's values: the smallest median speed-up over N ≥ SPEEDUP_FROM_N, the N where it
     is, and whether it is met (None where no N ≥ SPEEDUP_FROM_N was measured)."""
-    over = {n: r for n, r in by_n.items() if n >= SPEEDUP_FROM_N}
-    if not over:
-        return {"speedup_min_from_N8": None, "speedup_min_at_N": None, "target_speedup_met": None}
-    n_min = min(over, key=over.get)
-    return {"speedup_min_from_N8": over[n_min], "speedup_min_at_N": n_min,
-            "target_speedup_met": over[n_min] >= SPEEDUP_TARGET}
+    r, n = smallest_from_n8(by_n)
+    return {"speedup_min_from_N8": r, "speedup_min_at_N": n,
+            "target_speedup_met": None if r is None else r >= SPEEDUP_TARGET}
 
 
 def cold_speedup(t) -> dict:
     """The smallest median speed-up over N ≥ SPEEDUP_FROM_N with our support started cold, and
     where it is (None without a table, t = None, or where time_ours_cold_ns was not measured)."""
-    by_n = speedup_by_n(t, "time_ours_cold_ns") if t is not None else {}
-    over = {n: r for n, r in by_n.items() if n >= SPEEDUP_FROM_N}
-    if not over:
-        return {"speedup_cold_min_from_N8": None, "speedup_cold_min_at_N": None}
-    n_min = min(over, key=over.get)
-    return {"speedup_cold_min_from_N8": over[n_min], "speedup_cold_min_at_N": n_min}
+    r, n = smallest_from_n8(speedup_by_n(t, "time_ours_cold_ns") if t is not None else {})
+    return {"speedup_cold_min_from_N8": r, "speedup_cold_min_at_N": n}
