@@ -1,0 +1,89 @@
+#!/usr/bin/python3
+"""Compare two builds' Google Benchmark binaries on a shared, noisy machine.
+
+Runs binary A and binary B alternately, ROUNDS times each (A B A B ...), so that a change in the
+machine's load falls on both, and prints per benchmark the smallest and the median CPU time of
+each and their ratios B ÷ A. Other processes only add time, so the ratio of the smallest times is
+the estimate to quote; the medians say how wide the spread was. A ratio below 1 means B is faster.
+
+    scripts/bench_ab.py build-old/bin/bench_friction build/bin/bench_friction \\
+        --filter 'BM_ModelViscous/(6|50)$' --rounds 8
+
+The times are thread CPU times as Google Benchmark reports them (cpu_time). Only the standard
+library: no packages beyond python3.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+
+def fail(message):
+    print(f"bench_ab.py: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def run_once(binary, pattern, min_time):
+    """One run of `binary`: {benchmark name: cpu time in ns}."""
+    command = [binary, f"--benchmark_filter={pattern}", f"--benchmark_min_time={min_time}",
+               "--benchmark_format=json"]
+    done = subprocess.run(command, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        fail(f"{binary} exited with {done.returncode}: {done.stderr.strip()[-300:]}")
+    if not done.stdout.strip():
+        return {}  # no benchmark matched the filter
+    try:
+        report = json.loads(done.stdout)
+    except json.JSONDecodeError as e:
+        fail(f"{binary}: its output is not Google Benchmark JSON ({e})")
+    scale = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
+    times = {}
+    for b in report.get("benchmarks", []):
+        if b.get("run_type", "iteration") != "iteration":
+            continue  # aggregates of --benchmark_repetitions: the rounds here are the repeats
+        times[b["name"]] = b["cpu_time"] * scale[b.get("time_unit", "ns")]
+    return times
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("a", help="the reference benchmark binary (A)")
+    parser.add_argument("b", help="the benchmark binary to compare with it (B)")
+    parser.add_argument("--filter", default=".", help="--benchmark_filter regex (default: all)")
+    parser.add_argument("--rounds", type=int, default=6, help="runs of each binary (default 6)")
+    parser.add_argument("--min-time", type=float, default=0.15,
+                        help="--benchmark_min_time per benchmark and run, s (default 0.15)")
+    args = parser.parse_args()
+    for name in (args.a, args.b):
+        if not (os.path.isfile(name) and os.access(name, os.X_OK)):
+            fail(f"{name}: not an executable file")
+    if not 1 <= args.rounds <= 1000:
+        fail(f"--rounds {args.rounds}: give 1 to 1000")
+    if not 0.0 < args.min_time <= 60.0:
+        fail(f"--min-time {args.min_time}: give a time in (0, 60] s")
+
+    a_times, b_times = {}, {}
+    for r in range(args.rounds):
+        for binary, into in ((args.a, a_times), (args.b, b_times)):
+            for name, t in run_once(binary, args.filter, args.min_time).items():
+                into.setdefault(name, []).append(t)
+        print(f"round {r + 1}/{args.rounds}", file=sys.stderr)
+    names = [n for n in a_times if n in b_times]
+    if not names:
+        fail(f"no benchmark matching '{args.filter}' ran in both binaries")
+
+    width = max(len(n) for n in names)
+    print(f"{'benchmark':{width}}  {'A min':>9} {'A med':>9}  {'B min':>9} {'B med':>9}  "
+          f"{'B/A min':>7} {'B/A med':>7}")
+    for n in names:
+        a_min, a_med = min(a_times[n]), statistics.median(a_times[n])
+        b_min, b_med = min(b_times[n]), statistics.median(b_times[n])
+        print(f"{n:{width}}  {a_min:9.1f} {a_med:9.1f}  {b_min:9.1f} {b_med:9.1f}  "
+              f"{b_min / a_min:7.3f} {b_med / a_med:7.3f}")
+    print(f"(ns of CPU time; {args.rounds} alternating runs of each binary)")
+
+
+if __name__ == "__main__":
+    main()
