@@ -20,9 +20,10 @@ import subprocess
 import sys
 
 
-def fail(message):
+def fail(message, code=2):
+    """Exit 2 for bad usage or input, 1 when a benchmark run itself failed."""
     print(f"bench_ab.py: error: {message}", file=sys.stderr)
-    sys.exit(2)
+    sys.exit(code)
 
 
 def run_once(binary, pattern, min_time):
@@ -31,13 +32,13 @@ def run_once(binary, pattern, min_time):
                "--benchmark_format=json"]
     done = subprocess.run(command, capture_output=True, text=True, check=False)
     if done.returncode != 0:
-        fail(f"{binary} exited with {done.returncode}: {done.stderr.strip()[-300:]}")
+        fail(f"{binary} exited with {done.returncode}: {done.stderr.strip()[-300:]}", code=1)
     if not done.stdout.strip():
         return {}  # no benchmark matched the filter
     try:
         report = json.loads(done.stdout)
     except json.JSONDecodeError as e:
-        fail(f"{binary}: its output is not Google Benchmark JSON ({e})")
+        fail(f"{binary}: its output is not Google Benchmark JSON ({e})", code=1)
     scale = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
     times = {}
     for b in report.get("benchmarks", []):
