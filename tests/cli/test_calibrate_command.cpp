@@ -138,7 +138,9 @@ TEST(CliCalibrate, OrientationsThatCannotPairAreRefusedAtTheirRows) {
   const std::string file = (in.dir / "h.csv").string();
   // An unknown orientation.
   std::string h = read_text(in.dir / "h.csv");
-  h.replace(h.find("\n+x") + 1, 2, "+q");
+  const std::size_t plus_x = h.find("\n+x");
+  ASSERT_NE(plus_x, std::string::npos) << "the fixture has a +x record";
+  h = h.substr(0, plus_x + 1) + "+q" + h.substr(plus_x + 3);
   write_text(in.dir / "h.csv", h);
   expect_refused(in, {}, file + ":2:1: orientation: '+q'");
   // An orientation without its opposite (+x without −x), at its first row.
