@@ -8,8 +8,8 @@ CMAKE_ARGS ?=
 ifeq ($(CI),true)
 CMAKE_ARGS += -DSLIPWALK_WERROR=ON
 endif
-# Ninja starts a layer's files while the layer below links (Make waits at every library), which
-# keeps both cores busy through the build. A build folder keeps the generator it was made with.
+# Ninja starts a layer's files while the layer below links (Make waits at every library). A build
+# folder keeps the generator it was made with.
 export CMAKE_GENERATOR ?= Ninja
 
 DEBIAN_PACKAGES := cmake ninja-build g++ make pkg-config git \
