@@ -10,9 +10,8 @@
 #include <string>
 #include <thread>
 
-#ifndef SLIPWALK_GIT_COMMIT
-#define SLIPWALK_GIT_COMMIT "unknown"
-#endif
+// SLIPWALK_GIT_COMMIT: the source state, read before every build (lib/git_id.cmake).
+#include "slipwalk_git_id.hpp"
 #ifndef SLIPWALK_VERSION
 #define SLIPWALK_VERSION "0"
 #endif
