@@ -8,11 +8,16 @@
 // latencies of 1–8 cycles for an add and a multiply, a divide and a square root slower than an
 // add. Elsewhere the columns are NaN with a message. These bound the machine, not our code's
 // speed: no timing of the model is asserted.
+// The rates are judged by the best of three runs, column by column: ctest runs this beside other
+// tests, and a neighbour on the core slows a loop's flops (never speeds them), but not the integer
+// clock it is divided by, so a single run can time the scalar loop slowed and the SSE2 loop not
+// (seen: 2.06 against 6.36 flops per cycle, a ratio of 3.1). A loop's peak is its fastest run.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -79,29 +84,45 @@ TEST(MachineLimits, MeasuresNumbersEveryCoreOfItsKindObeys) {
   const std::vector<Point> pts = points("repeats = 5\nmin_repeat_s = 1e-3\n");
   ASSERT_EQ(pts.size(), 1u);
   kind().check(pts[0]);
-  const PointResult r = kind().run(pts[0]);
-  ASSERT_FALSE(r.failed) << r.message;
-  ASSERT_EQ(r.rows.size(), 1u);
-  const Cells& row = r.rows[0];
-  ASSERT_EQ(row.size(), kind().columns.size());
+  constexpr int kRuns = 3;
+  std::vector<Cells> runs;
+  for (int run = 0; run < kRuns; ++run) {
+    PointResult r = kind().run(pts[0]);
+    ASSERT_FALSE(r.failed) << r.message;
+    ASSERT_EQ(r.rows.size(), 1u);
+    ASSERT_EQ(r.rows[0].size(), kind().columns.size());
+    runs.push_back(std::move(r.rows[0]));
+  }
+  const Cells& row = runs[0];
 #if defined(__x86_64__) && defined(__GNUC__)
+  // A column's fastest run (a NaN column stays NaN).
+  const auto best = [&runs](const std::string& name) {
+    double out = num(runs[0], name);
+    for (const Cells& r : runs) {
+      out = std::max(out, num(r, name));
+    }
+    return out;
+  };
   EXPECT_EQ(text(row, "isa"), "x86-64");
-  const double ghz = num(row, "ghz");
-  EXPECT_GE(ghz, 0.5);
-  EXPECT_LE(ghz, 7.0);
-  const double scalar = num(row, "flops_per_cycle_scalar");
-  const double sse2 = num(row, "flops_per_cycle_sse2");
+  for (const Cells& r : runs) {  // a neighbour slows the rates: the upper bounds hold in every run
+    const double ghz = num(r, "ghz");
+    EXPECT_GE(ghz, 0.5);
+    EXPECT_LE(ghz, 7.0);
+    EXPECT_LE(num(r, "flops_per_cycle_scalar"), 4.0 * 1.25);
+    EXPECT_LE(num(r, "flops_per_cycle_sse2"), 8.0 * 1.25);
+  }
+  const double scalar = best("flops_per_cycle_scalar");
+  const double sse2 = best("flops_per_cycle_sse2");
   EXPECT_GE(scalar, 1.0);
-  EXPECT_LE(scalar, 4.0 * 1.25);
-  EXPECT_LE(sse2, 8.0 * 1.25);
-  EXPECT_NEAR(sse2 / scalar, 2.0, 0.7) << "SSE2 " << sse2 << ", scalar " << scalar;
+  EXPECT_NEAR(sse2 / scalar, 2.0, 0.7)
+      << "best of " << kRuns << " runs: SSE2 " << sse2 << ", scalar " << scalar;
   if (num(row, "avx2") != 0.0) {
-    const double avx2 = num(row, "flops_per_cycle_avx2");
+    const double avx2 = best("flops_per_cycle_avx2");
     EXPECT_GE(avx2, 0.7 * sse2);
     EXPECT_LE(avx2, 16.0 * 1.25);
   }
   if (num(row, "avx2") != 0.0 && num(row, "fma") != 0.0) {
-    const double fma = num(row, "flops_per_cycle_avx2_fma");
+    const double fma = best("flops_per_cycle_avx2_fma");
     EXPECT_GE(fma, 0.7 * sse2);
     EXPECT_LE(fma, 16.0 * 1.25);
   } else {
