@@ -19,6 +19,15 @@ function(git)
   endif()
 endfunction()
 
+# Commits everything in the scratch repository; `var` gets the commit's 12-hex id.
+function(commit_all message var)
+  git(add -A)
+  git(commit -q -m ${message})
+  execute_process(COMMAND git rev-parse --short=12 HEAD WORKING_DIRECTORY ${WORK}/repo
+    OUTPUT_VARIABLE commit OUTPUT_STRIP_TRAILING_WHITESPACE)
+  set(${var} "${commit}" PARENT_SCOPE)
+endfunction()
+
 # The id the script writes for SOURCE_DIR = dir, into `var`.
 function(id_of dir var)
   execute_process(COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${dir} -DOUT=${header} -P ${SCRIPT}
@@ -47,10 +56,7 @@ endfunction()
 git(init -q)
 file(WRITE ${WORK}/repo/lib/a.cpp "int a() { return 1; }\n")
 file(WRITE ${WORK}/repo/data/notes.txt "notes\n")
-git(add -A)
-git(commit -q -m first)
-execute_process(COMMAND git rev-parse --short=12 HEAD WORKING_DIRECTORY ${WORK}/repo
-  OUTPUT_VARIABLE first OUTPUT_STRIP_TRAILING_WHITESPACE)
+commit_all(first first)
 id_of(${WORK}/repo clean)
 expect("a clean tree" "${clean}" "${first}")
 
@@ -95,10 +101,7 @@ expect("edits to data and docs" "${elsewhere}" "${first}")
 
 # ---- a commit: the new commit ------------------------------------------------------------------
 file(WRITE ${WORK}/repo/lib/a.cpp "int a() { return 4; }\n")
-git(add -A)
-git(commit -q -m second)
-execute_process(COMMAND git rev-parse --short=12 HEAD WORKING_DIRECTORY ${WORK}/repo
-  OUTPUT_VARIABLE second OUTPUT_STRIP_TRAILING_WHITESPACE)
+commit_all(second second)
 id_of(${WORK}/repo committed)
 expect("after a commit" "${committed}" "${second}")
 
