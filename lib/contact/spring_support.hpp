@@ -49,12 +49,12 @@ struct SupportOptions {
   /// path. false: always Alg. 1.
   bool newton = true;
   /// Start the Newton route from the frame's previous balance (frame.alpha, beta, z, where
-  /// frame.support.status says kBalanced) and its contact set, instead of the all-feet cell at
-  /// zero tilt: along a trajectory the feet move little from frame to frame, the contact set is
-  /// usually the previous one, and one step certifies (two from the cold start where a foot is
-  /// lifted). The certificate is the same, so the result is the same minimizer to rounding (not
-  /// to the bit: another route to it); where the warm start does not certify, the cold start
-  /// runs. Ignored with `path` or without `newton`.
+  /// frame.support.status says kBalanced) and its contact set, instead of a cold start (the
+  /// all-feet cell, or from 12 legs the level body's balance): along a trajectory the feet move
+  /// little from frame to frame, the contact set is usually the previous one, and one step
+  /// certifies (two from the cold start where a foot is lifted). The certificate is the same, so
+  /// the result is the same minimizer to rounding (not to the bit: another route to it); where the
+  /// warm start does not certify, the cold start runs. Ignored with `path` or without `newton`.
   bool warm_start = false;
 };
 

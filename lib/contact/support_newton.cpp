@@ -11,18 +11,30 @@
 //   v⁺ = v − H_C⁻¹ ∇U_C(v),   H_C = Σ_C K a aᵀ,   ∇U_C(v) = Σ_C K h a + Mg e_z,
 // with a_j = (q_y, −q_x, 1) in the unscaled state v = (α, β, z). Reading the contact set off the
 // heights at v⁺ and repeating is the semismooth Newton method on ∇U = 0 (the active-set method for
-// this piecewise quadratic). It starts from the all-feet cell (the least-squares plane of all feet,
-// like §3.3.1's Newton on z*, which also starts from all feet); the steps grow slowly with the
-// feet (bench_friction's disk robots: 1.0 at 3 legs, 3.2 at 12, 4.7 at 50, like a bisection of the
-// contact set; a start at z* takes fewer steps but needs the path more often on small robots and
-// is no faster): each step is one pass over the feet, four at a time (an AVX2 clone
+// this piecewise quadratic). Each step is one pass over the feet, four at a time (an AVX2 clone
 // where the CPU has it, else pairs of SSE2 registers: same operations, hence the same rounding —
 // the clone leaves out FMA for that), with no branch on data, and a 3 × 3 solve by cofactors (one
 // division). Its Newton system is solved in the scaled state (αL, βL, z) of spring_support.cpp.
+// Two cold starts (a start is only a start: the certificate below does not depend on it):
+//  * All feet (fewer than kLevelStartLegs legs): the all-feet cell at v = 0, whose Newton step is
+//    the least-squares plane of all feet. From there each step drops about half of the feet still
+//    in the cell, like a bisection of the contact set, so the steps grow with log N
+//    (bench_friction's disk robots: 1.0 at 3 legs, 2.3 at 6, 3.2 at 12, 4.0 at 24, 4.7 at 50).
+//  * Level (kLevelStartLegs legs or more): the cell of the feet below a height just under the
+//    balance of the level body, §3.3.1's z* (level_height(): Newton steps in z alone, each a pass
+//    of two sums). That cell holds every foot the level balance stands on and few more, so what is
+//    left is mostly the tilt: 2.5 steps at 12 legs, 2.4 at 24, 2.5 at 50 on bench_friction's
+//    disks; 1.7–1.8 from 12 to 50 legs on the cost study's frames, where the all-feet start takes
+//    2.2–2.9. It costs a pass of its own (the start cell) besides its passes in z, and those are
+//    worth it from about 12 legs (callgrind, the whole model on BM_ModelViscous's disks: 2.6 %
+//    fewer instructions at 12 legs, 9 % at 24, 11 % at 50). On a few legs the tilt is most of the
+//    answer and this start leaves fewer than three feet down more often than the all-feet start
+//    (14 % more instructions at 6 legs, 49 % at 3). Where it does not certify, the all-feet start
+//    follows before the path search (in test_support_newton, of the 331 frames of 12 legs or more
+//    that the level start did not certify, the all-feet start certified 20).
 // Warm start (SupportOptions::warm_start): from a previous balance v0 and the feet below its plane
 // there. Along a trajectory that is usually the answer's cell already, so one step and its
-// confirming pass certify, where the all-feet start needs a second step whenever a foot is lifted
-// (a start is only a start: the certificate below does not depend on it).
+// confirming pass certify, where the all-feet start needs a second step whenever a foot is lifted.
 //
 // Certificate. Stop when the contact set read off the heights at v (the outputs' convention:
 // h_j < 0 beyond the rounding error of the heights, Rows::noise) equals the set the step to v was
@@ -58,6 +70,14 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxSteps = 12;
+// From this many legs the cold start is the level start (see the top). Its height takes steps in
+// z alone until one is taken from a cell of at most kLevelCellFeet feet or where the feet carry at
+// most kLevelNear × Mg (close to the level balance, however many feet it stands on), at most
+// kLevelSteps.
+constexpr int kLevelStartLegs = 12;
+constexpr int kLevelCellFeet = 24;
+constexpr double kLevelNear = 4.0;
+constexpr int kLevelSteps = 8;
 constexpr double kDefiniteTol = 1e-10;  // λ_min(H̃) / tr(H̃) below this: leave it to the path
 constexpr double kPolished = 1e-14;     // balance residual that needs no refinement
 constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accepted only below this
@@ -331,13 +351,19 @@ std::optional<Eigen::Vector3d> tilt_step(const Rows& R, int n, const Eigen::Vect
   return std::nullopt;
 }
 
+// Where the Newton steps start (see the top): the all-feet cell at v = 0, the balance of the level
+// body (a cell near the answer's, for many legs), or a previous balance (warm).
+enum class Start { kAllFeet, kLevel, kWarm };
+
 // Writes the feet into the rows (the padding feet far above the ground, K = 0) and sums the start
-// cell at v0, four feet at a time: q is 3 × N column-major (core::load_columns3). Cold (v0 = 0):
-// the all-feet cell, every foot with K > 0 (h = q_z). Warm: the feet with h_j(v0) < 0, the contact
-// set of the previous balance where v0 is that balance and the feet moved little. Also the largest
-// |q_y|, |q_x|, |q_z| (Rows::size) and q_x² + q_y² over the feet. A NaN coordinate reaches the sums
-// either way: a foot out of the cell enters them with weight 0, and 0 · NaN is NaN.
-template <bool kWarm>
+// cell at v0, four feet at a time: q is 3 × N column-major (core::load_columns3). All feet (at
+// v0 = 0): every foot with K > 0 (h = q_z). Level: only Σ K and Σ K q_z over all feet (in Sums::k
+// and Sums::gz), where level_height() begins. Warm: the feet with h_j(v0) < 0, the
+// contact set of the previous balance where v0 is that balance and the feet moved little. Also the
+// largest |q_y|, |q_x|, |q_z| (Rows::size) and q_x² + q_y² over the feet. A NaN coordinate reaches
+// the sums either way: a foot out of the cell enters them with weight 0, and 0 · NaN is NaN (the
+// level start's sums carry only q_z; its start cell's pass carries the rest).
+template <Start kStart>
 [[gnu::always_inline]] inline Sums rows_and_start(const Robot& robot, const Frame& frame,
                                                   const Eigen::Vector3d& v0, double* const* row,
                                                   std::int64_t* on, Eigen::Index cols,
@@ -369,11 +395,14 @@ template <bool kWarm>
     max_z = max_z < L::abs(z) ? L::abs(z) : max_z;
     const V r2 = x * x + y * y;
     max_r2 = max_r2 < r2 ? r2 : max_r2;
-    if constexpr (kWarm) {
+    if constexpr (kStart == Start::kWarm) {
       const V h = y * L::splat(v0(0)) + minus_x * L::splat(v0(1)) + (z_row + L::splat(v0(2)));
       const L::M touching = h < L::splat(0.0);
       L::store(on + j, touching);
       accumulate(s, L::select(touching, k), y, minus_x, h);
+    } else if constexpr (kStart == Start::kLevel) {
+      s.k += k;
+      s.gz += k * z;  // the start cell's pass writes the flags
     } else {
       L::store(on + j, k > L::splat(0.0));
       accumulate(s, k, y, minus_x, z);  // the all-feet cell at v = 0: h = q_z, weight K
@@ -388,8 +417,45 @@ template <bool kWarm>
   return s;
 }
 
-// The route from v0 (0 cold; warm: the previous balance, see rows_and_start).
-template <bool kWarm>
+// The level start's height (thesis §3.3.1's z*, approached from below). With α = β = 0 the
+// balance ΣF_z = Mg is a problem in z alone: F(z) = Σ K max(−(q_z + z), 0) = Mg, F convex and
+// falling. The all-feet root z₀ = −(Mg + Σ K q_z)/Σ K (from the sums `all` of rows_and_start) is
+// where the linear springs of every foot, pulling ones included, carry Mg; F is at least that sum,
+// so F(z₀) ≥ Mg and z₀ ≤ z*. A Newton step on F from below stays below z* (F lies above its
+// tangents, −Σ_{h<0} K being its slope to the right), so the feet below every height returned here
+// include every foot the level balance stands on; and since F ≥ Mg > 0 at each height stepped
+// from, some foot is below it and the stiffness a step divides by is positive. Each step is one
+// pass of two sums (a quarter of a Newton pass's work) and, like the all-feet start, about halves
+// the feet below; they stop after the one taken from a cell of at most kLevelCellFeet feet, which
+// the Newton steps take on faster, or from a height where the feet carry at most kLevelNear × Mg,
+// already near z*.
+[[gnu::always_inline]] inline double level_height(const Rows& R, const Sums& all, double Mg) {
+  using L = Lanes<4>;
+  using V = L::V;
+  double z = -(Mg + L::sum(all.gz)) / L::sum(all.k);
+  for (int step = 0; step < kLevelSteps; ++step) {
+    V stiffness{};
+    V pull{};  // Σ K h over the feet below z: −F(z)
+    L::M count{};
+    for (Eigen::Index j = 0; j < R.cols; j += 4) {
+      const V h = L::load(R.in[kQz] + j) + L::splat(z);
+      const L::M below = h < L::splat(0.0);
+      const V w = L::select(below, L::load(R.in[kK] + j));
+      stiffness += w;
+      pull += w * h;
+      count -= below;
+    }
+    const double F = -L::sum(pull);
+    z += (F - Mg) / L::sum(stiffness);
+    if (count[0] + count[1] + count[2] + count[3] <= kLevelCellFeet || F <= kLevelNear * Mg) {
+      break;
+    }
+  }
+  return z;
+}
+
+// The route from v0 (all feet and level: 0; warm: the previous balance, see rows_and_start).
+template <Start kStart>
 [[gnu::always_inline]] inline bool newton_route(const Robot& robot, Frame& frame,
                                                 const Eigen::Vector3d& v0) {
   const int n = frame.legs();
@@ -402,7 +468,7 @@ template <bool kWarm>
   double* const row[kRows] = {W.qy.data(), W.minus_qx.data(), W.qz.data(), W.K.data()};
   Eigen::Vector3d size;
   double size2 = 0.0;
-  const Sums start = rows_and_start<kWarm>(robot, frame, v0, row, W.on.data(), cols, size, size2);
+  const Sums start = rows_and_start<kStart>(robot, frame, v0, row, W.on.data(), cols, size, size2);
   const double L = size2 > 0.0 ? std::sqrt(size2) : 1.0;
   const double il = 1.0 / L;
   const double Mg = robot.Mg;
@@ -412,15 +478,21 @@ template <bool kWarm>
   // ---- Newton steps until the contact set repeats and the gradient vanishes -------------------
   SupportSummary& summary = frame.support;
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  if constexpr (kWarm) {
-    v = v0;
-  }
   Cell cell;
-  cell_of(start, Mg, cell);  // the start cell
+  if constexpr (kStart == Start::kLevel) {
+    v(2) = level_height(R, start, Mg);
+    pass(R, v, Mg, 0.0, cell);  // the start cell: the feet below the level start
+  } else {
+    if constexpr (kStart == Start::kWarm) {
+      v = v0;
+    }
+    cell_of(start, Mg, cell);  // the start cell
+  }
   // check_frame's range test of q, on the way: the largest |q_x|, |q_y|, |q_z| within
   // limits::kPosition (an infinity is the largest), and no NaN, which the maxima skip but the
-  // all-feet sums Σ K q_y, Σ K q_x and Σ K q_z carry (0 · NaN is NaN). Else the caller's
-  // check_frame names the culprit.
+  // start cell's sums Σ K q_y, Σ K q_x and Σ K h carry (a foot out of the cell has weight 0, and
+  // 0 · NaN is NaN; a NaN q_z makes the level start's height NaN). Else the caller's check_frame
+  // names the culprit.
   if (!(std::max({size(0), size(1), size(2)}) <= limits::kPosition.hi) ||
       std::isnan(cell.H(2, 0) + cell.H(2, 1) + cell.g(2))) {
     return false;
@@ -431,12 +503,17 @@ template <bool kWarm>
   // within rounding of their plane, which carry rounding), so its residual counts as one: from a
   // balance the first step's residual is rounding that a step no longer halves, and that step
   // certifies.
-  double last = kWarm ? residual(cell, inv_mg, il) : kInf;
+  double last = kStart == Start::kWarm ? residual(cell, inv_mg, il) : kInf;
   for (int step = 1; step <= kMaxSteps; ++step) {
     Eigen::Vector3d dv;
     if (!newton_step(cell, il, dv)) {
+      // (A start cell that is not definite: all feet, when they lie on a line, with nothing to
+      // tilt onto; warm, when the previous balance is no start, and the cold start follows;
+      // level, when few feet are below its height, which tilt like any cell.)
       const std::optional<Eigen::Vector3d> tilted =
-          step == 1 ? std::nullopt : tilt_step(R, n, Eigen::Vector3d(v), Mg, L, il, cell);
+          step == 1 && kStart != Start::kLevel
+              ? std::nullopt
+              : tilt_step(R, n, Eigen::Vector3d(v), Mg, L, il, cell);
       if (!tilted) {
         summary.newton_steps = step - 1;
         return false;
@@ -474,12 +551,23 @@ template <bool kWarm>
 }  // namespace
 
 SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
-  return newton_route<false>(robot, frame, Eigen::Vector3d::Zero());
+  if (frame.legs() >= kLevelStartLegs) {
+    if (newton_route<Start::kLevel>(robot, frame, Eigen::Vector3d::Zero())) {
+      return true;
+    }
+    // (The all-feet start next, so that no frame it certifies goes to the path search; the steps
+    // of both are counted.)
+    const int level_steps = frame.support.newton_steps;
+    const bool certified = newton_route<Start::kAllFeet>(robot, frame, Eigen::Vector3d::Zero());
+    frame.support.newton_steps += level_steps;
+    return certified;
+  }
+  return newton_route<Start::kAllFeet>(robot, frame, Eigen::Vector3d::Zero());
 }
 
 SLIPWALK_CLONES bool support_by_newton_warm(const Robot& robot, Frame& frame,
                                             const Eigen::Vector3d& v0) {
-  if (newton_route<true>(robot, frame, v0)) {
+  if (newton_route<Start::kWarm>(robot, frame, v0)) {
     return true;
   }
   // The previous balance was no start for these feet (fewer than three of them down there, or

@@ -199,6 +199,34 @@ TEST(SupportNewton, DiskRobotsOfTheBenchmarkCertifyWithoutAllocating) {
   }
 }
 
+// The level start (support_newton.cpp, from 12 legs) on the benchmark's disks: the feet below a
+// height just under the level balance already hold the cell the answer stands on, bar the tilt, so
+// the steps per frame stay flat in N. The all-feet start halves its cell per step (3.2 steps at 12
+// legs, 4.0 at 24, 4.7 at 50); a mean above 3 here means the start no longer reaches the answer's
+// cell.
+TEST(SupportNewton, TheLevelStartKeepsTheStepsFlatInTheLegs) {
+  std::mt19937_64 rng(117);
+  for (const int n : {12, 24, 50, 200}) {
+    Robot robot = slipwalk::contact::uniform_robot(n, 1000.0, 0.8, 10.0);
+    Frame f(robot);
+    int steps = 0;
+    const int trials = 400;
+    for (int trial = 0; trial < trials; ++trial) {
+      for (int k = 0; k < n; ++k) {
+        const double a = 2.0 * kPi * k / n;
+        f.q.col(k) << 0.3 * std::cos(a) + 0.05 * uniform(rng, -1.0, 1.0),
+            0.3 * std::sin(a) + 0.05 * uniform(rng, -1.0, 1.0), -0.1 + 0.01 * uniform(rng, -1, 1);
+      }
+      slipwalk::contact::spring_support(robot, f);
+      ASSERT_EQ(f.support.route, Route::kNewton) << n << " legs, trial " << trial;
+      steps += f.support.newton_steps;
+    }
+    const double mean = static_cast<double>(steps) / trials;
+    std::printf("%d legs: %.2f Newton steps per frame\n", n, mean);
+    EXPECT_LE(mean, 3.0) << n << " legs";
+  }
+}
+
 // Frames whose first Newton step (from the all-feet plane) leaves two feet or one down: the route
 // tilts onto the next foot (eqs. 3.11, 3.12) and must still end where the path ends, certified.
 TEST(SupportNewton, OvershootsTiltOntoTheNextFootAndEndWhereThePathEnds) {
