@@ -50,10 +50,12 @@ import peer_speedup as ps  # noqa: E402
 # per instruction) or "avx2" (the support's four-wide vector code in its AVX2 clone; pairs of SSE2
 # registers where the CPU has no AVX2).
 FLOPS = {
-    # lib/contact/support_newton.cpp rows_and_start (the rows and the all-feet cell at v = 0, four
-    # feet at a time): h = q_z (no arithmetic); w y, w x, w h (3); k, y, x += (3); yy, yx, xx,
-    # gy, gx += (w·) · (2 each: 10); gz += w h (1); q_x² + q_y² for the lever scale (3): 20.
-    "support_start_pass": {"flops": 20, "per": "foot", "width": "avx2"},
+    # lib/contact/support_newton.cpp, the level start (from 12 legs: the large-N end the slope b
+    # measures), four feet at a time: rows_and_start's Σ K, Σ K q_z += (3) and q_x² + q_y² for the
+    # lever scale (3); level_height's pass in z, one on the cost study's frames: h = q_z + z, w h,
+    # two += (4); the start cell's pass at (0, 0, z), as add_feet below (25): 35. (The all-feet
+    # start of fewer legs: the all-feet cell's sums in rows_and_start, 17, and the lever scale: 20.)
+    "support_start_pass": {"flops": 35, "per": "foot", "width": "avx2"},
     # add_feet, each Newton step's pass: h = y v0 + x v1 + (q_z + v2) (2 × and 3 +: 5), the
     # sums as in the start pass (17), d = on − on_prev and changes += d d (3): 25.
     "support_newton_pass": {"flops": 25, "per": "foot", "width": "avx2"},
@@ -105,11 +107,10 @@ STAGES = {
               ("viscous_forces", 1)],
     "coulomb_1e-09": [("coulomb_pass", "iterations+1"), ("coulomb_finish", 1)],
 }
-# legged_cost records the support's contact changes, not its Newton steps; where the CSV has no
-# newton_steps_mean column, the steps per frame are those lib/contact/support_newton.cpp's header
-# quotes from bench_friction for 50 legs (4.7; 3.2 at 12 legs), the large-N end that the slope b
-# measures.
-SUPPORT_STEPS_ASSUMED = 4.7
+# The support's Newton steps per frame: the CSV's newton_steps_mean at the disk robot with the most
+# legs, the large-N end that the slope b measures; where the CSV has no such column, those
+# lib/contact/support_newton.cpp's header quotes from bench_friction for 50 legs (2.5).
+SUPPORT_STEPS_ASSUMED = 2.5
 WIDTH_COLUMN = {"scalar": "flops_per_cycle_scalar", "sse2": "flops_per_cycle_sse2",
                 "avx2": "flops_per_cycle_avx2", "avx2_fma": "flops_per_cycle_avx2_fma"}
 WIDTH_LABEL = {"scalar": "scalar", "sse2": "2-wide SSE2", "avx2": "4-wide AVX2",
@@ -339,10 +340,10 @@ def limits(v: dict, rows: dict, machine: dict | None) -> None:
     cycles measured), and of the machine's peak (4-wide with FMA)."""
     disk_n = v["disk_N"]
     down = v.get("disk_down_fraction") or 0.0
-    support = [rows[("disk", n, "support")] for n in disk_n if ("disk", n, "support") in rows]
-    steps = [r["newton_steps_mean"] for r in support if "newton_steps_mean" in r]
-    v["support_steps"] = max(steps) if steps else SUPPORT_STEPS_ASSUMED
-    v["support_steps_source"] = ("the CSV's newton_steps_mean (largest over the disk robots)"
+    support = [(n, rows[("disk", n, "support")]) for n in disk_n if ("disk", n, "support") in rows]
+    steps = [(n, r["newton_steps_mean"]) for n, r in support if "newton_steps_mean" in r]
+    v["support_steps"] = max(steps)[1] if steps else SUPPORT_STEPS_ASSUMED
+    v["support_steps_source"] = (f"the CSV's newton_steps_mean at N = {max(steps)[0]}"
                                  if steps else "assumed (support_newton.cpp's header, 50 legs)")
     coul = [rows[("disk", n, "coulomb_1e-09")]["iterations_mean"] for n in disk_n
             if ("disk", n, "coulomb_1e-09") in rows]
