@@ -624,7 +624,9 @@ is an interpreter's overhead; the cost of one more leg is the target instead.
 <p class="small">Fits time = a + b·N over the disk robots (ns): b is the cost of one more leg, a
 the fixed cost per call. The spring support runs an active-set Newton method on its convex
 potential (a few vectorized passes over the feet, the Newton route) and falls back to Alg. 1's
-path where that does not certify; its pass count grows slowly with the feet down.</p>
+path where that does not certify. From 12 legs it starts near the level body's balance, and its
+Newton steps per frame stay about flat in N (below 12, from the all-feet plane, they grow
+slowly).</p>
 <table class='data'><thead><tr><th>stage</th><th>a (ns)</th><th>b (ns per leg)</th><th>a / b</th>
 </tr></thead><tbody>{fit_rows}</tbody></table>
 <p class="small">The hexapod, per frame (median; p25–p75 over repeats; ÷ the viscous-Coulomb
