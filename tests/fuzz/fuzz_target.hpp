@@ -11,6 +11,7 @@
 // and seeded mutations of them.
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -36,7 +37,7 @@ inline void require(bool ok, const std::string& what) {
 /// studies' folders, so that relative references (a scene's residual file, a spec's robot)
 /// resolve to the shipped files.
 [[nodiscard]] inline std::string source_path(std::string_view relative) {
-  return std::string(SLIPWALK_SOURCE_DIR) + "/" + std::string(relative);
+  return (std::filesystem::path(SLIPWALK_SOURCE_DIR) / relative).string();
 }
 
 Outcome scene(std::string_view bytes);           ///< scene::parse_scene, to_json
