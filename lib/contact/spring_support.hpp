@@ -50,7 +50,7 @@ struct SupportOptions {
   bool newton = true;
   /// Start the Newton route from the frame's previous balance (frame.alpha, beta, z, where
   /// frame.support.status says kBalanced) and its contact set, instead of a cold start (the
-  /// all-feet cell, or from 12 legs the level body's balance): along a trajectory the feet move
+  /// all-feet cell, or from 20 legs the level body's balance): along a trajectory the feet move
   /// little from frame to frame, the contact set is usually the previous one, and one step
   /// certifies (two from the cold start where a foot is lifted). The certificate is the same, so
   /// the result is the same minimizer to rounding (not to the bit: another route to it); where the

@@ -25,13 +25,15 @@
 //    of two sums). That cell holds every foot the level balance stands on and few more, so what is
 //    left is mostly the tilt: 2.5 steps at 12 legs, 2.4 at 24, 2.5 at 50 on bench_friction's
 //    disks; 1.7–1.8 from 12 to 50 legs on the cost study's frames, where the all-feet start takes
-//    2.2–2.9. It costs a pass of its own (the start cell) besides its passes in z, and those are
-//    worth it from about 12 legs (callgrind, the whole model on BM_ModelViscous's disks: 2.6 %
-//    fewer instructions at 12 legs, 9 % at 24, 11 % at 50). On a few legs the tilt is most of the
-//    answer and this start leaves fewer than three feet down more often than the all-feet start
-//    (14 % more instructions at 6 legs, 49 % at 3). Where it does not certify, the all-feet start
-//    follows before the path search (in test_support_newton, of the 331 frames of 12 legs or more
-//    that the level start did not certify, the all-feet start certified 20).
+//    2.2–2.9. It costs a pass of its own (the start cell) besides its passes in z. In instructions
+//    that pays from about 12 legs (callgrind, the whole model on BM_ModelViscous's disks: 2.6 %
+//    fewer at 12 legs, 9 % at 24, 11 % at 50), in time only from about 20: builds run alternately
+//    (the cost study's support rows, smallest of 15 runs), the level start took the support 12–13 %
+//    longer at 12 legs and 4 % at 16, 1–3 % less at 20, 9 % less at 24 and 7 % at 50
+//    (bench_friction, scripts/bench_ab.py: 3 % longer at 12 legs, 12–18 % less at 24 and 50). On a
+//    few legs the tilt is most of the answer and this start leaves fewer than three feet down more
+//    often than the all-feet start (14 % more instructions at 6 legs, 49 % at 3). Where it does not
+//    certify, the all-feet start follows before the path search.
 // Warm start (SupportOptions::warm_start): from a previous balance v0 and the feet below its plane
 // there. Along a trajectory that is usually the answer's cell already, so one step and its
 // confirming pass certify, where the all-feet start needs a second step whenever a foot is lifted.
@@ -70,11 +72,12 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxSteps = 12;
-// From this many legs the cold start is the level start (see the top). Its height takes steps in
+// From this many legs the cold start is the level start (see the top: where it starts to save
+// time, not instructions). Its height takes steps in
 // z alone until one is taken from a cell of at most kLevelCellFeet feet or where the feet carry at
 // most kLevelNear × Mg (close to the level balance, however many feet it stands on), at most
 // kLevelSteps.
-constexpr int kLevelStartLegs = 12;
+constexpr int kLevelStartLegs = 20;
 constexpr int kLevelCellFeet = 24;
 constexpr double kLevelNear = 4.0;
 constexpr int kLevelSteps = 8;
@@ -548,21 +551,30 @@ template <Start kStart>
   return false;
 }
 
+// The level start's route in a clone of its own, called only from kLevelStartLegs legs, as the
+// warm route is: inlined into support_by_newton beside the all-feet route, which every smaller
+// robot runs, the support at 3 and 6 legs measured 4–6 % slower than before the level start
+// existed, in its own clone 1–3 % (bench_friction, builds run alternately; identical builds differ
+// by up to 2–3 % there).
+SLIPWALK_CLONES bool support_by_newton_level(const Robot& robot, Frame& frame) {
+  return newton_route<Start::kLevel>(robot, frame, Eigen::Vector3d::Zero());
+}
+
 }  // namespace
 
 SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
+  int level_steps = 0;
   if (frame.legs() >= kLevelStartLegs) {
-    if (newton_route<Start::kLevel>(robot, frame, Eigen::Vector3d::Zero())) {
+    if (support_by_newton_level(robot, frame)) {
       return true;
     }
     // (The all-feet start next, so that no frame it certifies goes to the path search; the steps
     // of both are counted.)
-    const int level_steps = frame.support.newton_steps;
-    const bool certified = newton_route<Start::kAllFeet>(robot, frame, Eigen::Vector3d::Zero());
-    frame.support.newton_steps += level_steps;
-    return certified;
+    level_steps = frame.support.newton_steps;
   }
-  return newton_route<Start::kAllFeet>(robot, frame, Eigen::Vector3d::Zero());
+  const bool certified = newton_route<Start::kAllFeet>(robot, frame, Eigen::Vector3d::Zero());
+  frame.support.newton_steps += level_steps;
+  return certified;
 }
 
 SLIPWALK_CLONES bool support_by_newton_warm(const Robot& robot, Frame& frame,
