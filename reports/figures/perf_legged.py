@@ -50,7 +50,7 @@ import peer_speedup as ps  # noqa: E402
 # per instruction) or "avx2" (the support's four-wide vector code in its AVX2 clone; pairs of SSE2
 # registers where the CPU has no AVX2).
 FLOPS = {
-    # lib/contact/support_newton.cpp, the level start (from 12 legs: the large-N end the slope b
+    # lib/contact/support_newton.cpp, the level start (from 20 legs: the large-N end the slope b
     # measures), four feet at a time: rows_and_start's Σ K, Σ K q_z += (3) and q_x² + q_y² for the
     # lever scale (3); level_height's pass in z, one on the cost study's frames: h = q_z + z, w h,
     # two += (4); the start cell's pass at (0, 0, z), as add_feet below (25): 35. (The all-feet
@@ -624,9 +624,9 @@ is an interpreter's overhead; the cost of one more leg is the target instead.
 <p class="small">Fits time = a + b·N over the disk robots (ns): b is the cost of one more leg, a
 the fixed cost per call. The spring support runs an active-set Newton method on its convex
 potential (a few vectorized passes over the feet, the Newton route) and falls back to Alg. 1's
-path where that does not certify. From 12 legs it starts near the level body's balance, and its
-Newton steps per frame stay about flat in N (below 12, from the all-feet plane, they grow
-slowly).</p>
+path where that does not certify. From 20 legs it starts near the level body's balance, and its
+Newton steps per frame stay about flat in N (below 20, from the all-feet plane, they grow
+slowly; the level start has fewer instructions from 12 legs but saves time only from about 20).</p>
 <table class='data'><thead><tr><th>stage</th><th>a (ns)</th><th>b (ns per leg)</th><th>a / b</th>
 </tr></thead><tbody>{fit_rows}</tbody></table>
 <p class="small">The hexapod, per frame (median; p25–p75 over repeats; ÷ the viscous-Coulomb
