@@ -551,30 +551,30 @@ template <Start kStart>
   return false;
 }
 
-// The level start's route in a clone of its own, called only from kLevelStartLegs legs, as the
-// warm route is: inlined into support_by_newton beside the all-feet route, which every smaller
-// robot runs, the support at 3 and 6 legs measured 4–6 % slower than before the level start
-// existed, in its own clone 1–3 % (bench_friction, builds run alternately; identical builds differ
-// by up to 2–3 % there).
+// The level start, then the all-feet start where it does not certify (so that no frame the
+// all-feet start certifies goes to the path search; the steps of both are counted). A clone of its
+// own, called only from kLevelStartLegs legs, as the warm route is, so that support_by_newton keeps
+// for every smaller robot the code it had before the level start existed: with both routes inlined
+// there, the support at 3 and 6 legs measured 4–6 % slower than before, and 0.98–1.03 of before
+// this way (bench_friction and the cost study's rows, builds run alternately; identical builds
+// differ by up to 2–3 %).
 SLIPWALK_CLONES bool support_by_newton_level(const Robot& robot, Frame& frame) {
-  return newton_route<Start::kLevel>(robot, frame, Eigen::Vector3d::Zero());
+  if (newton_route<Start::kLevel>(robot, frame, Eigen::Vector3d::Zero())) {
+    return true;
+  }
+  const int level_steps = frame.support.newton_steps;
+  const bool certified = newton_route<Start::kAllFeet>(robot, frame, Eigen::Vector3d::Zero());
+  frame.support.newton_steps += level_steps;
+  return certified;
 }
 
 }  // namespace
 
 SLIPWALK_CLONES bool support_by_newton(const Robot& robot, Frame& frame) {
-  int level_steps = 0;
   if (frame.legs() >= kLevelStartLegs) {
-    if (support_by_newton_level(robot, frame)) {
-      return true;
-    }
-    // (The all-feet start next, so that no frame it certifies goes to the path search; the steps
-    // of both are counted.)
-    level_steps = frame.support.newton_steps;
+    return support_by_newton_level(robot, frame);  // a call: this clone stays as small as before
   }
-  const bool certified = newton_route<Start::kAllFeet>(robot, frame, Eigen::Vector3d::Zero());
-  frame.support.newton_steps += level_steps;
-  return certified;
+  return newton_route<Start::kAllFeet>(robot, frame, Eigen::Vector3d::Zero());
 }
 
 SLIPWALK_CLONES bool support_by_newton_warm(const Robot& robot, Frame& frame,
