@@ -71,23 +71,12 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kMaxSteps = 12;
-// From this many legs the cold start is the level start (see the top: where it starts to save
-// time, not instructions). Its height takes steps in z alone until one is taken from a cell of at
-// most kLevelCellFeet feet or where the feet carry at most kLevelNear × Mg (close to the level
-// balance, however many feet it stands on), at most kLevelSteps.
-constexpr int kLevelStartLegs = 20;
+// The level start's height takes steps in z alone until one is taken from a cell of at most
+// kLevelCellFeet feet or where the feet carry at most kLevelNear × Mg (close to the level balance,
+// however many feet it stands on), at most kLevelSteps.
 constexpr int kLevelCellFeet = 24;
 constexpr double kLevelNear = 4.0;
 constexpr int kLevelSteps = 8;
-constexpr double kDefiniteTol = 1e-10;  // λ_min(H̃) / tr(H̃) below this: leave it to the path
-constexpr double kPolished = 1e-14;     // balance residual that needs no refinement
-constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accepted only below this
-// A foot this many times the heights' rounding error (Rows::noise) or closer to its plane at the
-// end may carry nothing at the balance and hold a tilt (a see-saw on a line of contacts with one
-// foot exactly touching): the contact set is then not strictly complementary, the minimizer may
-// not be unique, and the path search decides.
-constexpr double kNearPlane = 1e3;
 // The padding foot (odd N) sits this far above the ground: never in contact, K = 0.
 constexpr double kAboveGround = 1e300;
 // A moment the contacts cannot take below kFlatTilt × Mg is zero (spring_support.cpp's kFlatTol).

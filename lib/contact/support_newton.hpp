@@ -6,6 +6,20 @@
 
 namespace slipwalk::contact::detail {
 
+// The certificate's constants, shared with the batched route (support_batch.cpp).
+inline constexpr int kMaxSteps = 12;
+inline constexpr double kDefiniteTol = 1e-10;  // λ_min(H̃) / tr(H̃) below this: leave it to the path
+inline constexpr double kPolished = 1e-14;     // balance residual that needs no refinement
+inline constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accepted only below this
+// A foot this many times the heights' rounding error or closer to its plane at the end may carry
+// nothing at the balance and hold a tilt (a see-saw on a line of contacts with one foot exactly
+// touching): the contact set is then not strictly complementary, the minimizer may not be unique,
+// and the path search decides.
+inline constexpr double kNearPlane = 1e3;
+// From this many legs the cold start is the level start (support_newton.cpp: where it starts to
+// save time, not instructions).
+inline constexpr int kLevelStartLegs = 20;
+
 /// Tries the Newton route. Returns true when it certified the global minimizer of U: the contact
 /// set read off the feet's heights did not change over the last step, ∇U = 0 to rounding on that
 /// set, and the cell's Hessian is safely nonsingular (three or more contacts off a line), so the
