@@ -2,8 +2,11 @@
 // The local connection of thesis eq. 3.20: with the viscous-Coulomb ansatz the body velocity is
 // linear in the feet's planar velocities, v_body = A(q) · vec(q̇_xy) with A of size 3 × 2N
 // (columns 2k, 2k+1 for foot k; zero for feet in the air). Also the whole per-frame pipeline.
+#include <span>
+
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
+#include "contact/support_batch.hpp"
 #include "friction/solvers.hpp"
 #include "friction/viscous_system.hpp"
 
@@ -26,5 +29,15 @@ enum class FrictionLaw { kViscousCoulomb, kCoulomb };
 /// frame's balance).
 void evaluate(const contact::Robot& robot, contact::Frame& frame, FrictionLaw law,
               const contact::SupportOptions& support = {});
+
+/// evaluate(robot, frame, law) for every frame, four independent frames at a time, frame i of a
+/// group in lane i of a vector: the spring support (contact::spring_support_batch) and, with
+/// viscous-Coulomb friction on an isotropic robot, the balance and A
+/// (friction::solve_viscous_coulomb_group); the same contact sets and statuses, every output to
+/// rounding (not to the bit: the feet are summed in another order). For frames that do not wait for
+/// each other's answers (a batch from a file, random frames; not a trajectory's warm starts).
+/// Every frame must have robot.legs() legs; does not allocate once scratch fits the robot.
+void evaluate_batch(const contact::Robot& robot, std::span<contact::Frame> frames, FrictionLaw law,
+                    contact::BatchScratch& scratch);
 
 }  // namespace slipwalk::connection

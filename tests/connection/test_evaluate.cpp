@@ -126,6 +126,47 @@ TEST(ConnectionEvaluate, SymmetricRobotPushingBackwardsMovesForward) {
 // No allocation per frame (the model's contract, contact/robot.hpp): once a Frame exists, every
 // evaluation of any odd or even count of legs, with feet lifting and landing between frames, runs
 // on the frame's own scratch — the support's rows, the viscous rows, the Coulomb rows.
+TEST(ConnectionEvaluate, ABatchIsFrameByFrameToRounding) {
+  // evaluate_batch: the spring support four frames at a time (contact::spring_support_batch, its
+  // own tests), then each frame's connection and balance. Against evaluate() frame by frame: the
+  // same contact sets and statuses, every output to rounding; batches of every length mod 4, both
+  // laws, robots below and above the level start's 20 legs.
+  std::mt19937 rng(5);
+  std::bernoulli_distribution lifted(0.3);
+  for (const int n : {3, 5, 6, 8, 13, 24}) {
+    const contact::Robot robot = contact::uniform_robot(n, 1000.0, 0.8, 10.0);
+    contact::BatchScratch scratch(n);
+    for (const int count : {1, 2, 3, 4, 7, 41}) {
+      std::vector<contact::Frame> frames;
+      for (int i = 0; i < count; ++i) {
+        frames.push_back(hexapod_frame(robot, rng));
+        for (int k = 0; k < n; ++k) {
+          frames.back().q(2, k) += lifted(rng) ? 0.2 : 0.0;
+        }
+      }
+      for (FrictionLaw law : {FrictionLaw::kViscousCoulomb, FrictionLaw::kCoulomb}) {
+        std::vector<contact::Frame> batched = frames;
+        evaluate_batch(robot, batched, law, scratch);
+        for (int i = 0; i < count; ++i) {
+          contact::Frame& g = frames[static_cast<std::size_t>(i)];
+          evaluate(robot, g, law);
+          const contact::Frame& f = batched[static_cast<std::size_t>(i)];
+          SCOPED_TRACE(std::to_string(n) + " legs, frame " + std::to_string(i) + " of " +
+                       std::to_string(count));
+          EXPECT_EQ(f.support.status, g.support.status);
+          EXPECT_EQ(f.contact, g.contact);
+          EXPECT_EQ(f.friction.converged, g.friction.converged);
+          EXPECT_EQ(f.friction.unique, g.friction.unique);
+          EXPECT_LE((f.Fz - g.Fz).norm(), 1e-12 * robot.Mg);
+          EXPECT_LE((f.v_body - g.v_body).norm(), 1e-11 * (g.v_body.norm() + 1e-3));
+          EXPECT_LE((f.Fxy - g.Fxy).norm(), 1e-11 * (g.Fxy.norm() + 1e-3));
+          EXPECT_LE((f.A - g.A).norm(), 1e-11 * g.A.norm());
+        }
+      }
+    }
+  }
+}
+
 TEST(ConnectionEvaluate, EvaluatesFrameAfterFrameWithoutAllocating) {
 #ifdef SLIPWALK_SANITIZED
   GTEST_SKIP() << "the sanitizers' runtime allocates on its own";

@@ -3,10 +3,14 @@
 // cells outside contact::limits are refused at row:col with the range.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "connection/frame_model.hpp"
+#include "connection/local_connection.hpp"
 #include "contact/frame_batch.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
@@ -63,6 +67,61 @@ TEST(FrameBatch, CrlfAndByteOrderMarkReadExactlyAsLf) {
       EXPECT_EQ(std::count(expected.begin(), expected.end(), '\n'), rows + 1);
       EXPECT_EQ(connection::evaluate_frame_batch(robot, crlf, "f.csv", law), expected);
       EXPECT_EQ(connection::evaluate_frame_batch(robot, bom, "f.csv", law), expected);
+    }
+  }
+}
+
+// The batch goes four rows per call of connection::evaluate_batch; each output row must be what
+// connection::evaluate gives for that row's frame alone: the same contacts, status and
+// certificate flag, the numbers to rounding.
+TEST(FrameBatch, EveryRowIsThatFrameEvaluatedAloneToRounding) {
+  std::mt19937 rng(13);
+  for (const int legs : {3, 6, 7}) {
+    for (const int rows : {1, 4, 9}) {
+      const std::string text = batch(legs, rows, "\n", rng);
+      const Robot robot = uniform_robot(legs, 100.0, 0.7, 9.81);
+      const std::string got = connection::evaluate_frame_batch(
+          robot, text, "f.csv", connection::FrictionLaw::kViscousCoulomb);
+      FrameBatchReader reader(text, "f.csv", legs);
+      core::LineReader lines(got);
+      std::string_view line;
+      ASSERT_TRUE(lines.next(line));  // the header
+      Frame f(robot);
+      std::vector<std::string_view> cells;
+      std::vector<int> starts;
+      int count = 0;
+      while (reader.next(f)) {
+        connection::evaluate(robot, f, connection::FrictionLaw::kViscousCoulomb);
+        ASSERT_TRUE(lines.next(line));
+        core::split_cells(line, cells, starts);
+        ASSERT_EQ(cells.size(), 9U + 4U * static_cast<std::size_t>(legs));
+        const auto cell = [&cells](std::size_t i) { return std::stod(std::string(cells[i])); };
+        std::vector<double> expected = {static_cast<double>(reader.frame_number()),
+                                        f.alpha,
+                                        f.beta,
+                                        f.z,
+                                        f.v_body(0),
+                                        f.v_body(1),
+                                        f.v_body(2),
+                                        static_cast<double>(f.support.status),
+                                        f.friction.converged ? 1.0 : 0.0};
+        for (int j = 0; j < legs; ++j) {
+          expected.insert(expected.end(),
+                          {static_cast<double>(f.contact[j]), f.Fz(j), f.Fxy(0, j), f.Fxy(1, j)});
+        }
+        for (std::size_t i = 0; i < expected.size(); ++i) {
+          const bool exact = i == 0 || i == 7 || i == 8 || (i >= 9 && (i - 9) % 4 == 0);
+          if (exact) {
+            EXPECT_EQ(cell(i), expected[i]) << "row " << count << " column " << i;
+          } else {
+            EXPECT_NEAR(cell(i), expected[i], 1e-11 * (std::abs(expected[i]) + 1e-3))
+                << "row " << count << " column " << i;
+          }
+        }
+        ++count;
+      }
+      EXPECT_EQ(count, rows);
+      EXPECT_FALSE(lines.next(line));
     }
   }
 }
