@@ -3,7 +3,9 @@
 // per-frame cost and its growth with the number of legs; thesis §3.6.1 for the thesis' timings).
 //
 // A point builds `frames` frames and runs each through contact::spring_support, so the contact
-// sets and loads are the model's own. sequence = "independent" (the default): random frames
+// sets and loads are the model's own. The methods support_batch and model_batch take all frames at
+// once, four per call (contact::spring_support_batch, connection::evaluate_batch: frame i of a
+// group in lane i of a vector), independent frames only. sequence = "independent" (the default): random frames
 // (jittered feet, some lifted, random foot velocities; a hexapod frame has 3–6 feet down), each
 // solved on its own. sequence = "trajectory" (hexapod only): successive 100 Hz frames of BigANT's
 // alternating tripod walking and turning (robots::bigant_tripod, its legs, mass and stiffness;
@@ -33,6 +35,7 @@
 #include "connection/local_connection.hpp"
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
+#include "contact/support_batch.hpp"
 #include "core/csv.hpp"
 #include "friction/solvers.hpp"
 #include "robots/robots.hpp"
@@ -53,13 +56,34 @@ constexpr double kBodyWeight = 8.18 * 9.81;  // N: BigANT's 8.18 kg (thesis ch. 
 constexpr double kSinkage = 0.01;            // m: static sinkage with every foot down
 constexpr double kHeight = 0.1;              // m: feet this far below the body frame
 
-enum class Method { kViscous, kEpsilon, kCoulomb, kSupport, kConnection, kModel };
+enum class Method {
+  kViscous,
+  kEpsilon,
+  kCoulomb,
+  kSupport,
+  kConnection,
+  kModel,
+  kSupportBatch,
+  kModelBatch
+};
 
-const std::vector<std::string_view> kMethodNames = {"viscous", "epsilon",    "coulomb",
-                                                    "support", "connection", "model"};
+const std::vector<std::string_view> kMethodNames = {"viscous",       "epsilon",    "coulomb",
+                                                    "support",       "connection", "model",
+                                                    "support_batch", "model_batch"};
 
 [[nodiscard]] bool is_friction(Method m) {
   return m == Method::kViscous || m == Method::kEpsilon || m == Method::kCoulomb;
+}
+
+/// The methods that take all frames at once, four side by side (contact::spring_support_batch,
+/// connection::evaluate_batch): independent frames only.
+[[nodiscard]] bool is_batched(Method m) {
+  return m == Method::kSupportBatch || m == Method::kModelBatch;
+}
+
+/// The methods that run the spring support, and so count its Newton steps.
+[[nodiscard]] bool runs_support(Method m) {
+  return m == Method::kSupport || m == Method::kModel || is_batched(m);
 }
 
 const std::vector<std::string_view> kCostKeys = {"robot", "N",      "method",  "eps",
@@ -113,6 +137,11 @@ CostInputs read_cost(const Point& point) {
   const std::string method = r.choice("method", kMethodNames);
   in.method = static_cast<Method>(std::find(kMethodNames.begin(), kMethodNames.end(), method) -
                                   kMethodNames.begin());
+  if (in.trajectory && is_batched(in.method)) {
+    r.fail("method", "\"" + method +
+                         "\" takes independent frames four at a time: not with sequence = "
+                         "\"trajectory\", whose frames start from each other's answers");
+  }
   if (in.method == Method::kEpsilon) {
     if (!r.has("eps")) {
       r.fail("eps", "required with method = \"epsilon\" (eq. 3.14's ε, m/s)");
@@ -267,6 +296,32 @@ void solve(const contact::Robot& robot, contact::Frame& f, const CostInputs& in)
       connection::evaluate(robot, f, connection::FrictionLaw::kViscousCoulomb,
                            contact::SupportOptions{.warm_start = in.trajectory});
       break;
+    case Method::kSupportBatch:
+    case Method::kModelBatch:
+      break;  // solve_all: all frames at once
+  }
+}
+
+/// Every frame with the method: one after the other (along a trajectory each from what the
+/// previous one left, carry; the first from the last, a jump back along the walk), or all at once
+/// for the batched methods.
+void solve_all(const contact::Robot& robot, std::vector<contact::Frame>& fs, const CostInputs& in,
+               contact::BatchScratch& scratch) {
+  if (in.method == Method::kSupportBatch) {
+    contact::spring_support_batch(robot, fs, scratch);
+  } else if (in.method == Method::kModelBatch) {
+    connection::evaluate_batch(robot, fs, connection::FrictionLaw::kViscousCoulomb, scratch);
+  } else if (in.trajectory) {
+    const contact::Frame* prev = &fs.back();
+    for (contact::Frame& f : fs) {
+      carry(*prev, f);
+      solve(robot, f, in);
+      prev = &f;
+    }
+  } else {
+    for (contact::Frame& f : fs) {
+      solve(robot, f, in);
+    }
   }
 }
 
@@ -293,19 +348,9 @@ struct Timing {
 /// moves with the load of a shared machine, one taken within a repeat does not.
 Timing time_method(const contact::Robot& robot, std::vector<contact::Frame>& frames,
                    const CostInputs& in, std::vector<contact::Frame>* baseline) {
-  const auto pass = [&robot](std::vector<contact::Frame>& fs, const CostInputs& how) {
-    if (how.trajectory) {
-      const contact::Frame* prev = &fs.back();
-      for (contact::Frame& f : fs) {
-        carry(*prev, f);
-        solve(robot, f, how);
-        prev = &f;
-      }
-    } else {
-      for (contact::Frame& f : fs) {
-        solve(robot, f, how);
-      }
-    }
+  contact::BatchScratch scratch(robot.legs());  // before the clock starts
+  const auto pass = [&robot, &scratch](std::vector<contact::Frame>& fs, const CostInputs& how) {
+    solve_all(robot, fs, how, scratch);
   };
   CostInputs viscous = in;
   viscous.method = Method::kViscous;
@@ -515,6 +560,10 @@ Rows<CostRow> run_cost(const Point& point) {
   long long unconverged = 0;
   long long ref_static = 0;
   contact::Frame ref(robot);
+  if (is_batched(in.method)) {
+    contact::BatchScratch scratch(robot.legs());
+    solve_all(robot, frames, in, scratch);  // the contacts counted below are those of make_frames
+  }
   const contact::Frame* prev = nullptr;
   for (contact::Frame& f : frames) {
     if (in.trajectory && prev != nullptr) {
@@ -528,9 +577,11 @@ Rows<CostRow> run_cost(const Point& point) {
     contacts_sum += down;
     contacts_min = std::min(contacts_min, down);
     contacts_max = std::max(contacts_max, down);
-    solve(robot, f, in);
+    if (!is_batched(in.method)) {
+      solve(robot, f, in);
+    }
     newton_steps += f.support.newton_steps;
-    if (in.method == Method::kSupport) {
+    if (in.method == Method::kSupport || in.method == Method::kSupportBatch) {
       iterations += f.support.iterations;
       unconverged += f.support.status == contact::SupportSummary::Status::kIterationLimit ? 1 : 0;
     } else if (is_friction(in.method)) {
@@ -592,9 +643,7 @@ Rows<CostRow> run_cost(const Point& point) {
                       errors.ref_unconverged,
                       friction ? static_cast<double>(ref_static) / nf : kNaN,
                       static_cast<double>(iterations) / nf,
-                      in.method == Method::kSupport || in.method == Method::kModel
-                          ? static_cast<double>(newton_steps) / nf
-                          : kNaN,
+                      runs_support(in.method) ? static_cast<double>(newton_steps) / nf : kNaN,
                       unconverged,
                       message});
   return out;

@@ -4,15 +4,17 @@
 // Coulomb on a 17° slope beside the flat hexapod (aim: ≤ 1.5× flat); and the whole frame
 // (connection::evaluate: spring support, A, friction law; aims: ≤ 0.15 µs for a hexapod and
 // ≤ 8 ns per leg, the slope of a + b N over the disk robots) and the spring support alone, the
-// rows Fig. 3.13a times. (The report's performance page measures the same aims on the
-// ch3_legged cost study, with the arithmetic each stage must do beside them.) Robots as in thesis
-// §3.5.3 / Fig. 3.13: a disk of radius 0.3 m with N legs equally spaced on the rim; 4096 random
-// poses and velocities per N, all feet on the ground with random loads (for the whole frame:
-// random leg heights, so that the support search works). Each is copied into one working frame
-// before the call (BM_CopyInputs times the copy alone): so many inputs that the branch predictor
-// cannot learn the sequence (with 256, a current CPU memorizes it for small N and a 12-leg spring
-// support looked twice as fast as it is), one frame so that they need not fit in the caches.
-// Compare the rows as ratios; the counter "legs" lets a script fit time = a + b N per row.
+// rows Fig. 3.13a times; both also four independent frames at a time (evaluate_batch,
+// spring_support_batch: the counter "frame" is their time per frame). (The report's performance
+// page measures the same aims on the ch3_legged cost study, with the arithmetic each stage must do
+// beside them.) Robots as in thesis §3.5.3 / Fig. 3.13: a disk of radius 0.3 m with N legs equally
+// spaced on the rim; 4096 random poses and velocities per N, all feet on the ground with random
+// loads (for the whole frame: random leg heights, so that the support search works). Each is copied
+// into one working frame before the call (BM_CopyInputs times the copy alone): so many inputs that
+// the branch predictor cannot learn the sequence (with 256, a current CPU memorizes it for small N
+// and a 12-leg spring support looked twice as fast as it is), one frame so that they need not fit
+// in the caches. Compare the rows as ratios; the counter "legs" lets a script fit time = a + b N
+// per row.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -23,6 +25,7 @@
 #include "connection/local_connection.hpp"
 #include "contact/robot.hpp"
 #include "contact/spring_support.hpp"
+#include "contact/support_batch.hpp"
 #include "friction/solvers.hpp"
 #include "robots/robots.hpp"
 #include "terrain/terrain.hpp"
@@ -263,6 +266,56 @@ void BM_ModelCoulomb(benchmark::State& state) {
   });
 }
 
+/// The batched model (connection::evaluate_batch, contact::spring_support_batch): four of the
+/// pool's inputs per iteration, copied into four working frames and evaluated as one group (frame i
+/// in lane i of a vector). Its time per iteration is that of four frames: the counter "frame" is
+/// the time per frame, to set beside BM_ModelViscous and BM_SpringSupport (which copy one input
+/// per frame the same way).
+template <class Solve>
+void run_batch(benchmark::State& state, Pool& pool, Solve solve) {
+  constexpr int kGroup = 4;
+  std::vector<Frame> frames(kGroup, pool.frame);
+  slipwalk::contact::BatchScratch scratch(pool.robot.legs());
+  std::size_t next = 0;
+  double steps = 0.0;
+  long long calls = 0;
+  for (auto _ : state) {
+    for (Frame& f : frames) {
+      const Inputs& in = pool.inputs[next];
+      next = (next + 1) % pool.inputs.size();
+      f.q = in.q;
+      f.qdot = in.qdot;
+      f.contact = in.contact;
+      f.Fz = in.Fz;
+    }
+    solve(pool.robot, frames, scratch);
+    benchmark::DoNotOptimize(frames.front().v_body.data());
+    for (const Frame& f : frames) {
+      steps += f.support.newton_steps;
+    }
+    calls += kGroup;
+  }
+  state.counters["legs"] = static_cast<double>(pool.robot.legs());
+  state.counters["steps"] = steps / static_cast<double>(calls > 0 ? calls : 1);
+  state.counters["frame"] = benchmark::Counter(
+      kGroup, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_SpringSupportBatch(benchmark::State& state) {
+  Pool pool = make_model_pool(static_cast<int>(state.range(0)));
+  run_batch(state, pool, [](const Robot& r, std::vector<Frame>& fs, auto& scratch) {
+    slipwalk::contact::spring_support_batch(r, fs, scratch);
+  });
+}
+
+void BM_ModelViscousBatch(benchmark::State& state) {
+  Pool pool = make_model_pool(static_cast<int>(state.range(0)));
+  run_batch(state, pool, [](const Robot& r, std::vector<Frame>& fs, auto& scratch) {
+    slipwalk::connection::evaluate_batch(r, fs, slipwalk::connection::FrictionLaw::kViscousCoulomb,
+                                         scratch);
+  });
+}
+
 /// Successive frames of a walk (the cost a trajectory pays per frame): BigANT's alternating tripod
 /// (robots::bigant_tripod, its four-bar legs, mass and stiffness) sampled at 100 Hz as the
 /// thesis' F/T and motion data were (§3.5.1.1), steering left (steer 0.3: the inner side's
@@ -337,6 +390,8 @@ BENCHMARK(BM_CoulombSlopeHexapod1e9)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_SpringSupport)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelViscous)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelCoulomb)->LEGS->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_SpringSupportBatch)->LEGS->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_ModelViscousBatch)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ViscousTrajectoryHexapod)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombTrajectoryHexapod1e9)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombTrajectoryHexapodCold1e9)->Unit(benchmark::kNanosecond);
