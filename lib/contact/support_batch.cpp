@@ -9,6 +9,13 @@
 // (its step masked to zero). A group costs its slowest frame's steps, so the lanes' spare steps
 // are the price of the shared ones; frames not certified are solved again by spring_support.
 // Termination: at most kMaxSteps passes per group.
+//
+// The start is the all-feet cell at every leg count, also where the one-frame route starts from
+// the level body (from 20 legs, support_newton.cpp): the batch takes more steps there (2.45 per
+// frame at 20 legs, 2.9 at 50, against 1.7–1.8) but each costs less. On the cost study's disks
+// (three runs) it took 0.54–0.65 of the one-frame support's time at 16 legs, 0.66–0.67 at 20,
+// 0.71–0.74 at 24, 0.76–0.89 at 32 and 0.74–1.02 at 50; a level start of its own is left for
+// when the many-legged robots need it.
 #include "contact/support_batch.hpp"
 
 #include <algorithm>
@@ -262,15 +269,6 @@ SLIPWALK_CLONES unsigned support_group(const Robot& robot, Frame* const* frames,
 }  // namespace
 
 void spring_support_batch(const Robot& robot, std::span<Frame> frames, BatchScratch& scratch) {
-  if (robot.legs() >= detail::kLevelStartLegs) {
-    // Many legs: the one-frame route's level start takes fewer steps than the all-feet start, and
-    // a group would wait for its slowest frame's (bench_friction and the cost study's disks: the
-    // batch took 1.4 times as long at 24 legs, on par at 12).
-    for (Frame& frame : frames) {
-      spring_support(robot, frame);
-    }
-    return;
-  }
   if (!scratch.holds(robot.legs())) {
     scratch = BatchScratch(robot.legs());
   }

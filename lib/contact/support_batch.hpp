@@ -10,8 +10,10 @@
 // it. With the frames in the lanes each foot is one vector operation for four frames, the sums
 // need no reduction across lanes, and one vector division serves four solves.
 //
-// Same answer. The steps, the start (the all-feet cell), the contact convention and the
-// certificate are those of support_by_newton: a frame is certified only when its contact set
+// Same answer. The steps, the contact convention and the certificate are those of
+// support_by_newton, and so is the start below 20 legs (the all-feet cell; from 20 legs the
+// one-frame route starts from the level body, the batch still from all feet, see
+// support_batch.cpp): a frame is certified only when its contact set
 // repeats, the balance residual is zero to rounding and the cell is safely definite, so the
 // certified state is the unique minimizer of U, and the same frame's one-frame route certifies
 // the same contact set and the same state to rounding (the feet are summed in another order,

@@ -71,9 +71,11 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// The level start's height takes steps in z alone until one is taken from a cell of at most
-// kLevelCellFeet feet or where the feet carry at most kLevelNear × Mg (close to the level balance,
-// however many feet it stands on), at most kLevelSteps.
+// From this many legs the cold start is the level start (see the top: where it starts to save
+// time, not instructions). Its height takes steps in z alone until one is taken from a cell of at
+// most kLevelCellFeet feet or where the feet carry at most kLevelNear × Mg (close to the level
+// balance, however many feet it stands on), at most kLevelSteps.
+constexpr int kLevelStartLegs = 20;
 constexpr int kLevelCellFeet = 24;
 constexpr double kLevelNear = 4.0;
 constexpr int kLevelSteps = 8;

@@ -16,9 +16,6 @@ inline constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accept
 // touching): the contact set is then not strictly complementary, the minimizer may not be unique,
 // and the path search decides.
 inline constexpr double kNearPlane = 1e3;
-// From this many legs the cold start is the level start (support_newton.cpp: where it starts to
-// save time, not instructions).
-inline constexpr int kLevelStartLegs = 20;
 
 /// Tries the Newton route. Returns true when it certified the global minimizer of U: the contact
 /// set read off the feet's heights did not change over the last step, ∇U = 0 to rounding on that

@@ -115,6 +115,7 @@ TEST(SupportBatch, EveryFrameOfRandomRobotsIsTheOneFrameRoutesAnswer) {
   std::mt19937_64 rng(201);
   BatchScratch scratch(3);  // resized to each robot's legs
   Tally all;
+  int same_start = 0;  // frames both routes start from the all-feet cell
   for (int trial = 0; trial < 300; ++trial) {
     const int n = 3 + static_cast<int>(rng() % 28);  // both sides of the level start's 20 legs
     const Scene s = random_supported(rng, n);
@@ -124,15 +125,21 @@ TEST(SupportBatch, EveryFrameOfRandomRobotsIsTheOneFrameRoutesAnswer) {
     const Tally t = compare_batch(s, frames_of(s, count, 0.01, 2.0 * delta, rng), scratch);
     all.frames += t.frames;
     all.certified += t.certified;
-    all.same_steps += t.same_steps;
+    if (n < 20) {  // from 20 legs the one-frame route starts from the level body instead
+      all.same_steps += t.same_steps;
+      same_start += t.frames;
+    }
   }
-  std::printf("batch certified %d of %d frames, %d with the one-frame route's step count\n",
-              all.certified, all.frames, all.same_steps);
+  std::printf(
+      "batch certified %d of %d frames; %d of %d from the same start with the one-frame "
+      "route's step count\n",
+      all.certified, all.frames, all.same_steps, same_start);
   // The batch is worth having only if it certifies most frames itself (otherwise everything
-  // is still right, but slower than one frame at a time: this catches that). Its steps are the
-  // one-frame route's, so the step counts agree except where rounding decides a refinement.
+  // is still right, but slower than one frame at a time: this catches that). Below 20 legs its
+  // steps are the one-frame route's, so the step counts agree except where rounding decides a
+  // refinement.
   EXPECT_GE(all.certified, all.frames * 8 / 10);
-  EXPECT_GE(all.same_steps, all.frames * 95 / 100);
+  EXPECT_GE(all.same_steps, same_start * 95 / 100);
 }
 
 TEST(SupportBatch, CertifiedFramesAreThePotentialsMinimizer) {
@@ -198,24 +205,16 @@ TEST(SupportBatch, DegenerateFramesInAGroupHandOverAndLeaveTheOthersAlone) {
   compare_batch(s, ties, scratch);
 }
 
-TEST(SupportBatch, ManyLeggedRobotsTakeTheOneFrameRouteToTheBit) {
+// From 20 legs the one-frame route starts from the level body, the batch from all feet: two
+// routes to the same certified minimizer.
+TEST(SupportBatch, ManyLeggedRobotsEndWhereTheOneFrameLevelStartEnds) {
   std::mt19937_64 rng(209);
   BatchScratch scratch(24);
-  for (const int n : {20, 24, 50}) {
+  for (const int n : {20, 24, 50, 200}) {
     const Scene s = random_supported(rng, n);
-    std::vector<Frame> frames = frames_of(s, 9, 0.01, s.Mg / s.K.sum(), rng);
-    std::vector<Frame> alone = frames;
-    for (Frame& f : alone) {
-      slipwalk::contact::spring_support(s.robot(), f);
-    }
-    spring_support_batch(s.robot(), frames, scratch);
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      EXPECT_EQ(frames[i].z, alone[i].z) << n << " legs, frame " << i;
-      EXPECT_EQ(frames[i].alpha, alone[i].alpha);
-      EXPECT_EQ(frames[i].beta, alone[i].beta);
-      EXPECT_EQ(frames[i].contact, alone[i].contact);
-      EXPECT_EQ(frames[i].support.newton_steps, alone[i].support.newton_steps);
-    }
+    SCOPED_TRACE(std::to_string(n) + " legs");
+    const Tally t = compare_batch(s, frames_of(s, 9, 0.01, s.Mg / s.K.sum(), rng), scratch);
+    EXPECT_GE(t.certified, 8);
   }
 }
 
