@@ -14,8 +14,10 @@
 // the level body (from 20 legs, support_newton.cpp): the batch takes more steps there (2.45 per
 // frame at 20 legs, 2.9 at 50, against 1.7–1.8) but each costs less. On the cost study's disks
 // (three runs) it took 0.54–0.65 of the one-frame support's time at 16 legs, 0.66–0.67 at 20,
-// 0.71–0.74 at 24, 0.76–0.89 at 32 and 0.74–1.02 at 50; a level start of its own is left for
-// when the many-legged robots need it.
+// 0.71–0.74 at 24, 0.76–0.89 at 32 and 0.74–1.02 at 50. On bench_friction's disks, whose feet
+// are all near the ground (4.0 all-feet steps at 24 legs, 4.7 at 50, against 2.4 from the level
+// start), it is on par from 24 legs (one run: 0.98 at 24, 1.00 at 50; 0.64 at 12, 0.58 at 6). A
+// level start of its own is left for when the many-legged robots need it.
 #include "contact/support_batch.hpp"
 
 #include <algorithm>
