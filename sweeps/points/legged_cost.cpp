@@ -5,11 +5,11 @@
 // A point builds `frames` frames and runs each through contact::spring_support, so the contact
 // sets and loads are the model's own. The methods support_batch and model_batch take all frames at
 // once, four per call (contact::spring_support_batch, connection::evaluate_batch: frame i of a
-// group in lane i of a vector), independent frames only. sequence = "independent" (the default): random frames
-// (jittered feet, some lifted, random foot velocities; a hexapod frame has 3–6 feet down), each
-// solved on its own. sequence = "trajectory" (hexapod only): successive 100 Hz frames of BigANT's
-// alternating tripod walking and turning (robots::bigant_tripod, its legs, mass and stiffness;
-// §3.5.1.1's frame rate; 3–6 feet down, the hand-overs included), solved in order as a
+// group in lane i of a vector), independent frames only. sequence = "independent" (the default):
+// random frames (jittered feet, some lifted, random foot velocities; a hexapod frame has 3–6 feet
+// down), each solved on its own. sequence = "trajectory" (hexapod only): successive 100 Hz frames
+// of BigANT's alternating tripod walking and turning (robots::bigant_tripod, its legs, mass and
+// stiffness; §3.5.1.1's frame rate; 3–6 feet down, the hand-overs included), solved in order as a
 // simulation would, each starting from the previous frame's answer: Coulomb warm-starts from it
 // (CoulombOptions::warm_start), the spring support from its balance (SupportOptions::warm_start,
 // in the support and the whole model), and every method gets the previous v_body, static marks
