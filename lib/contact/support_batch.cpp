@@ -49,7 +49,6 @@ namespace {
 using L = core::Lanes<4>;
 using V = L::V;
 using M = L::M;
-using detail::kDefiniteTol;
 using detail::kMaxSteps;
 using detail::kNearPlane;
 using detail::kPolished;
@@ -107,32 +106,11 @@ struct Feet {
   return s;
 }
 
-// The Newton step −H⁻¹ g of every lane's cell in the scaled state (support_newton.cpp's
-// newton_step: cofactors and one division), and the lanes whose cell is safely definite.
+// The Newton step −H⁻¹ g of every lane's cell (support_newton.hpp's cell_newton_step, lane by
+// lane), and the lanes whose cell is safely definite.
 [[gnu::always_inline]] inline M newton_step(const Sums& s, V Mg, V il, V& d0, V& d1, V& d2) {
-  const V h00 = s.yy * il * il;
-  const V h10 = s.yx * il * il;
-  const V h11 = s.xx * il * il;
-  const V h20 = s.y * il;
-  const V h21 = s.x * il;
-  const V h22 = s.k;
-  const V c00 = h11 * h22 - h21 * h21;
-  const V c01 = h21 * h20 - h10 * h22;
-  const V c02 = h10 * h21 - h11 * h20;
-  const V c11 = h00 * h22 - h20 * h20;
-  const V c12 = h10 * h20 - h00 * h21;
-  const V c22 = h00 * h11 - h10 * h10;
-  const V det = h00 * c00 + h10 * c01 + h20 * c02;
-  const V tr = h00 + h11 + h22;
-  const M definite = (h00 > 0.0) & (c22 > 0.0) & (4.0 * det > kDefiniteTol * tr * tr * tr);
-  const V b0 = -s.gy * il;
-  const V b1 = -s.gx * il;
-  const V b2 = -(s.gz + Mg);
-  const V inv = 1.0 / det;
-  d0 = (c00 * b0 + c01 * b1 + c02 * b2) * inv * il;
-  d1 = (c01 * b0 + c11 * b1 + c12 * b2) * inv * il;
-  d2 = (c02 * b0 + c12 * b1 + c22 * b2) * inv;
-  return definite;
+  return detail::cell_newton_step(s.yy, s.yx, s.xx, s.y, s.x, s.k, s.gy, s.gx, s.gz + Mg, il, d0,
+                                  d1, d2);
 }
 
 // The loads of eq. 3.7 at the lanes' states, F_z = −K h for the feet of the last pass's contact

@@ -204,36 +204,17 @@ struct Sums {
   return core::any(near);
 }
 
-// dv = −H⁻¹ g, solved in the scaled state ũ = D v, D = diag(L, L, 1) (il = 1/L) (H̃ = D⁻¹ H D⁻¹,
-// g̃ = D⁻¹ g) by the adjugate; false when H̃ is not safely definite (see the top).
+// dv = −H⁻¹ g of the cell (cell_newton_step, support_newton.hpp: in the scaled state, by the
+// adjugate); false when H̃ is not safely definite (see the top).
 [[gnu::always_inline]] inline bool newton_step(const Cell& c, double il, Eigen::Vector3d& dv) {
-  const double h00 = c.H(0, 0) * il * il;
-  const double h10 = c.H(1, 0) * il * il;
-  const double h11 = c.H(1, 1) * il * il;
-  const double h20 = c.H(2, 0) * il;
-  const double h21 = c.H(2, 1) * il;
-  const double h22 = c.H(2, 2);
-  // Cofactors: all independent, one division (an LDLᵀ chains three, which cost more than the
-  // rest of a step on small robots).
-  const double c00 = h11 * h22 - h21 * h21;
-  const double c01 = h21 * h20 - h10 * h22;
-  const double c02 = h10 * h21 - h11 * h20;
-  const double c11 = h00 * h22 - h20 * h20;
-  const double c12 = h10 * h20 - h00 * h21;
-  const double c22 = h00 * h11 - h10 * h10;
-  const double det = h00 * c00 + h10 * c01 + h20 * c02;
-  const double tr = h00 + h11 + h22;
-  // Positive leading minors (Sylvester), and λ_min ≥ det / (tr/2)² safely above zero.
-  if (!(h00 > 0.0) || !(c22 > 0.0) || !(4.0 * det > kDefiniteTol * tr * tr * tr)) {
+  double d0 = 0.0;
+  double d1 = 0.0;
+  double d2 = 0.0;
+  if (!cell_newton_step(c.H(0, 0), c.H(1, 0), c.H(1, 1), c.H(2, 0), c.H(2, 1), c.H(2, 2), c.g(0),
+                        c.g(1), c.g(2), il, d0, d1, d2)) {
     return false;
   }
-  const double b0 = -c.g(0) * il;
-  const double b1 = -c.g(1) * il;
-  const double b2 = -c.g(2);
-  const double inv = 1.0 / det;
-  dv = Eigen::Vector3d((c00 * b0 + c01 * b1 + c02 * b2) * inv * il,
-                       (c01 * b0 + c11 * b1 + c12 * b2) * inv * il,
-                       (c02 * b0 + c12 * b1 + c22 * b2) * inv);
+  dv = Eigen::Vector3d(d0, d1, d2);
   return true;
 }
 

@@ -3,6 +3,7 @@
 // active-set (semismooth) Newton method on the convex potential U of spring_support.cpp. Each
 // step is one vectorized pass over the feet; the answer is certified or rejected, never guessed.
 #include "contact/robot.hpp"
+#include "core/lanes.hpp"  // cell_newton_step takes its lanes (and -Wpsabi is off for them there)
 
 namespace slipwalk::contact::detail {
 
@@ -11,6 +12,42 @@ inline constexpr int kMaxSteps = 12;
 inline constexpr double kDefiniteTol = 1e-10;  // λ_min(H̃) / tr(H̃) below this: leave it to the path
 inline constexpr double kPolished = 1e-14;     // balance residual that needs no refinement
 inline constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accepted only below this
+/// The Newton step dv = −H⁻¹ g of a cell, H = Σ_C K a aᵀ (symmetric: entries h00 h10 h11 h20 h21
+/// h22 of the unscaled state v = (α, β, z)) and g = (g0, g1, g2), solved in the scaled state
+/// ũ = D v, D = diag(L, L, 1) (il = 1/L; H̃ = D⁻¹ H D⁻¹, g̃ = D⁻¹ g) by the adjugate. Returns whether
+/// H̃ is safely definite (positive leading minors, by Sylvester, and λ_min ≥ det / (tr/2)² above
+/// kDefiniteTol · tr); dv means something only then. T is double (one cell: the result converts
+/// to bool) or a vector of lanes (a cell per lane, core/lanes.hpp: the result is a lane mask), so
+/// the one-frame route and the batched one (support_batch.cpp) take the same arithmetic.
+template <class T>
+[[gnu::always_inline]] inline auto cell_newton_step(T H00, T H10, T H11, T H20, T H21, T H22, T g0,
+                                                    T g1, T g2, T il, T& d0, T& d1, T& d2) {
+  const T h00 = H00 * il * il;
+  const T h10 = H10 * il * il;
+  const T h11 = H11 * il * il;
+  const T h20 = H20 * il;
+  const T h21 = H21 * il;
+  const T h22 = H22;
+  // Cofactors: all independent, one division (an LDLᵀ chains three, which cost more than the
+  // rest of a step on small robots).
+  const T c00 = h11 * h22 - h21 * h21;
+  const T c01 = h21 * h20 - h10 * h22;
+  const T c02 = h10 * h21 - h11 * h20;
+  const T c11 = h00 * h22 - h20 * h20;
+  const T c12 = h10 * h20 - h00 * h21;
+  const T c22 = h00 * h11 - h10 * h10;
+  const T det = h00 * c00 + h10 * c01 + h20 * c02;
+  const T tr = h00 + h11 + h22;
+  const T b0 = -g0 * il;
+  const T b1 = -g1 * il;
+  const T b2 = -g2;
+  const T inv = 1.0 / det;
+  d0 = (c00 * b0 + c01 * b1 + c02 * b2) * inv * il;
+  d1 = (c01 * b0 + c11 * b1 + c12 * b2) * inv * il;
+  d2 = (c02 * b0 + c12 * b1 + c22 * b2) * inv;
+  return (h00 > 0.0) & (c22 > 0.0) & (4.0 * det > kDefiniteTol * tr * tr * tr);
+}
+
 // A foot this many times the heights' rounding error or closer to its plane at the end may carry
 // nothing at the balance and hold a tilt (a see-saw on a line of contacts with one foot exactly
 // touching): the contact set is then not strictly complementary, the minimizer may not be unique,

@@ -128,7 +128,7 @@ template <bool kFromSupport>
   const contact::SupportNewtonScratch& W = frame.support_newton;
   V L2{};
   V active{};
-  V sc{}, scx{}, scy{}, scrr{}, scdx{}, scdy{}, scm{};
+  IsotropicSums sums;
   for (Eigen::Index j = 0; j < rows.cols(); j += 4) {  // a multiple of four
     V x;
     V y;
@@ -155,21 +155,13 @@ template <bool kFromSupport>
     L::store(r[Row::kQy] + j, y);
     L::store(r[Row::kQdx] + j, dx);
     L::store(r[Row::kQdy] + j, dy);
-    const V cx = c * x;
-    const V cy = c * y;
     active += L::select(on, L::splat(1.0));
     const V rr = L::select(on, x * x + y * y);
     L2 = L2 < rr ? rr : L2;
-    sc += c;
-    scx += cx;
-    scy += cy;
-    scrr += cx * x + cy * y;
-    scdx += c * dx;
-    scdy += c * dy;
-    scm += cx * dy - cy * dx;  // (S q)ᵀ q̇ c = (−q_y q̇_x + q_x q̇_y) c
+    sums.add(c, x, y, dx, dy);
   }
-  const V counts = core::lane_sums(active, sc, scx, scy);
-  const V moments = core::lane_sums(scrr, scdx, scdy, scm);
+  const V counts = core::lane_sums(active, sums.c, sums.cx, sums.cy);
+  const V moments = core::lane_sums(sums.crr, sums.cdx, sums.cdy, sums.cm);
   out.active = static_cast<int>(counts[0]);
   out.c_sum = counts[1];
   out.anisotropic = false;

@@ -29,6 +29,7 @@
 #include <limits>
 
 #include "contact/robot.hpp"
+#include "core/lanes.hpp"
 
 namespace slipwalk::friction::detail {
 
@@ -173,6 +174,26 @@ class Psd3 {
   Eigen::Vector3d inv_d_ = Eigen::Vector3d::Ones();       ///< 1/d_
   Eigen::Matrix3d V_ = Eigen::Matrix3d::Identity();       ///< eigenvectors (eigen path)
   Eigen::Vector3d inv_lambda_ = Eigen::Vector3d::Zero();  ///< 1/λ or 0 (eigen path)
+};
+
+/// The seven sums of the isotropic viscous system (G = I: M = Σ c J_kᵀ J_k, b = Σ c J_kᵀ q̇_k),
+/// unscaled, lane by lane: Σ c, Σ c q_x, Σ c q_y, Σ c ‖q_xy‖², Σ c q̇_x, Σ c q̇_y and
+/// Σ c (S q)ᵀ q̇ = Σ c (q_x q̇_y − q_y q̇_x). The lanes are four feet of one frame
+/// (viscous_balance's isotropic assembly) or one foot of four frames (viscous_batch.cpp).
+struct IsotropicSums {
+  using V = core::Lanes<4>::V;
+  V c{}, cx{}, cy{}, crr{}, cdx{}, cdy{}, cm{};
+  [[gnu::always_inline]] void add(V weight, V x, V y, V dx, V dy) {
+    const V wx = weight * x;
+    const V wy = weight * y;
+    c += weight;
+    cx += wx;
+    cy += wy;
+    crr += wx * x + wy * y;
+    cdx += weight * dx;
+    cdy += weight * dy;
+    cm += wx * dy - wy * dx;
+  }
 };
 
 /// Assembles M̃ = Σ c_k φ_k J̃ᵀ G J̃ and b̃ = Σ c_k φ_k J̃ᵀ G q̇ (φ ≡ 1) in scaled coordinates.

@@ -55,7 +55,7 @@ SLIPWALK_CLONES unsigned viscous_group(const contact::Robot& robot, contact::Fra
 
   // ---- the system M̃ x = −b̃ of every lane (balance.hpp, isotropic: seven sums) ----------------
   V L2{};
-  V sc{}, scx{}, scy{}, scrr{}, scdx{}, scdy{}, scm{};
+  detail::IsotropicSums sums;
   for (std::ptrdiff_t j = 0; j < n; ++j) {
     const std::ptrdiff_t p = 3 * j;
     const V x{q[0][p], q[1][p], q[2][p], q[3][p]};
@@ -73,29 +73,21 @@ SLIPWALK_CLONES unsigned viscous_group(const contact::Robot& robot, contact::Fra
     L::store(ys + kLanes * j, y);
     L::store(dxs + kLanes * j, dx);
     L::store(dys + kLanes * j, dy);
-    const V cx = c * x;
-    const V cy = c * y;
     L2 = max_of(L2, L::select(on, x * x + y * y));
-    sc += c;
-    scx += cx;
-    scy += cy;
-    scrr += cx * x + cy * y;
-    scdx += c * dx;
-    scdy += c * dy;
-    scm += cx * dy - cy * dx;  // (S q)ᵀ q̇ c
+    sums.add(c, x, y, dx, dy);
   }
   V lever{};  // Contacts::set_lever_scale
   for (int i = 0; i < kLanes; ++i) {
     lever[i] = L2[i] > 0.0 ? std::sqrt(L2[i]) : 1.0;
   }
   const V il = 1.0 / lever;
-  const V m00 = sc;
-  const V m02 = -(scy * il);
-  const V m12 = scx * il;
-  const V m22 = scrr * il * il;
-  const V b0 = scdx;
-  const V b1 = scdy;
-  const V b2 = scm * il;
+  const V m00 = sums.c;
+  const V m02 = -(sums.cy * il);
+  const V m12 = sums.cx * il;
+  const V m22 = sums.crr * il * il;
+  const V b0 = sums.cdx;
+  const V b1 = sums.cdy;
+  const V b2 = sums.cm * il;
 
   // ---- Psd3::factorize's LDLᵀ (m01 = 0, m11 = m00): safely definite, or the caller's ----------
   const V floor = detail::kRankTol * max_of((m00 + m00) + m22, V{});

@@ -166,13 +166,7 @@ TEST(SupportBatch, CertifiedFramesAreThePotentialsMinimizer) {
 // (a tie). Each must come out as the one-frame route leaves it, and must not disturb its group.
 TEST(SupportBatch, DegenerateFramesInAGroupHandOverAndLeaveTheOthersAlone) {
   std::mt19937_64 rng(207);
-  const Scene s = from_feet({{0.25, 0.15, -0.12},
-                             {0.0, 0.2, -0.12},
-                             {-0.25, 0.15, -0.12},
-                             {0.25, -0.15, -0.12},
-                             {0.0, -0.2, -0.12},
-                             {-0.25, -0.15, -0.12}},
-                            {2000.0}, 30.0);
+  const Scene s = flat_hexapod();
   std::vector<Frame> frames = frames_of(s, 12, 0.01, 0.003, rng);
   frames[1].q.row(0).array() += 1.0;  // every foot ahead of the CoM: the robot tips
   frames[2].q.row(2).array() += 0.5;  // all feet lifted but one: the body tilts onto more

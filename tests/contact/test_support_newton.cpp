@@ -94,13 +94,7 @@ TEST(SupportNewton, StiffnessesOverSixDecadesAndManyLegsMatchTheOracle) {
 }
 
 TEST(SupportNewton, FlatHexapodNeedsNoContactChanges) {
-  const Scene s = from_feet({{0.25, 0.15, -0.12},
-                             {0.0, 0.2, -0.12},
-                             {-0.25, 0.15, -0.12},
-                             {0.25, -0.15, -0.12},
-                             {0.0, -0.2, -0.12},
-                             {-0.25, -0.15, -0.12}},
-                            {2000.0}, 30.0);
+  const Scene s = flat_hexapod();
   const Solved r = solve(s);
   EXPECT_EQ(r.frame.support.route, Route::kNewton);
   EXPECT_LE(r.frame.support.newton_steps, 2);  // the step, and a refinement if rounding needs it

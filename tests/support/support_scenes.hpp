@@ -216,4 +216,16 @@ inline Scene from_feet(const std::vector<Eigen::Vector3d>& feet, const std::vect
   s.Mg = Mg;
   return s;
 }
+
+// A level hexapod (BigANT-like: three pairs of feet 0.25 m apart, 0.3–0.4 m wide), every foot
+// 0.12 m below the body, K = 2000 N/m, Mg = 30 N.
+inline Scene flat_hexapod() {
+  return from_feet({{0.25, 0.15, -0.12},
+                    {0.0, 0.2, -0.12},
+                    {-0.25, 0.15, -0.12},
+                    {0.25, -0.15, -0.12},
+                    {0.0, -0.2, -0.12},
+                    {-0.25, -0.15, -0.12}},
+                   {2000.0}, 30.0);
+}
 }  // namespace slipwalk::testing::support_scenes
