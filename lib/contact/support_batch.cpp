@@ -63,21 +63,6 @@ struct Sums {
   M changes{};  // minus the count of feet whose flag changed
 };
 
-[[gnu::always_inline]] inline void accumulate(Sums& s, V w, V y, V x, V h) {
-  const V wy = w * y;
-  const V wx = w * x;
-  const V wh = w * h;
-  s.k += w;
-  s.y += wy;
-  s.x += wx;
-  s.yy += wy * y;
-  s.yx += wy * x;
-  s.xx += wx * x;
-  s.gy += wh * y;
-  s.gx += wh * x;
-  s.gz += wh;
-}
-
 [[gnu::always_inline]] inline V max_of(V a, V b) { return a < b ? b : a; }
 
 // The feet of the four frames in the scratch, foot-major (column j: foot j of each lane).
@@ -101,7 +86,7 @@ struct Feet {
     const M touching = h < threshold;
     s.changes += touching ^ L::load(F.on + kLanes * j);
     L::store(F.on + kLanes * j, touching);
-    accumulate(s, L::select(touching, L::splat(F.K[j])), y, x, h);
+    detail::accumulate_cell(s, L::select(touching, L::splat(F.K[j])), y, x, h);
   }
   return s;
 }
@@ -186,7 +171,7 @@ SLIPWALK_CLONES unsigned support_group(const Robot& robot, Frame* const* frames,
     max_x = max_of(max_x, L::abs(x));
     max_z = max_of(max_z, L::abs(z));
     max_r2 = max_of(max_r2, x * x + y * y);
-    accumulate(start, k, y, minus_x, z);
+    detail::accumulate_cell(start, k, y, minus_x, z);
   }
   V size_L{};
   for (int i = 0; i < kLanes; ++i) {

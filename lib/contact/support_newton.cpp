@@ -124,22 +124,6 @@ struct Sums {
   Lanes<4>::M changes{};  // minus the count of feet whose flag changed (integer lanes)
 };
 
-// Adds feet j … j + 3 with weights w (K_j on the cell, else 0) and heights h to the sums.
-[[gnu::always_inline]] inline void accumulate(Sums& s, Sums::V w, Sums::V y, Sums::V x, Sums::V h) {
-  const Sums::V wy = w * y;
-  const Sums::V wx = w * x;
-  const Sums::V wh = w * h;
-  s.k += w;
-  s.y += wy;
-  s.x += wx;
-  s.yy += wy * y;
-  s.yx += wy * x;
-  s.xx += wx * x;
-  s.gy += wh * y;
-  s.gx += wh * x;
-  s.gz += wh;
-}
-
 // The quadratic model of the sums, written into c (the Newton loop's own cell, in place).
 [[gnu::always_inline]] inline void cell_of(const Sums& s, double Mg, Cell& c) {
   const Sums::V first = core::lane_sums(s.k, s.y, s.x, s.yy);
@@ -165,7 +149,7 @@ struct Sums {
   const L::M touching = h < L::splat(threshold);
   s.changes += touching ^ L::load(R.on + j);  // −1 where the flag changed
   L::store(R.on + j, touching);
-  accumulate(s, L::select(touching, L::load(R.in[kK] + j)), y, x, h);
+  accumulate_cell(s, L::select(touching, L::load(R.in[kK] + j)), y, x, h);
 }
 
 // One pass over the feet at v, four at a time, into c: the feet with h_j < threshold (by default
@@ -373,13 +357,13 @@ template <Start kStart>
       const V h = y * L::splat(v0(0)) + minus_x * L::splat(v0(1)) + (z_row + L::splat(v0(2)));
       const L::M touching = h < L::splat(0.0);
       L::store(on + j, touching);
-      accumulate(s, L::select(touching, k), y, minus_x, h);
+      accumulate_cell(s, L::select(touching, k), y, minus_x, h);
     } else if constexpr (kStart == Start::kLevel) {
       s.k += k;
       s.gz += k * z;  // the start cell's pass writes the flags
     } else {
       L::store(on + j, k > L::splat(0.0));
-      accumulate(s, k, y, minus_x, z);  // the all-feet cell at v = 0: h = q_z, weight K
+      accumulate_cell(s, k, y, minus_x, z);  // the all-feet cell at v = 0: h = q_z, weight K
     }
   }
   size.setZero();

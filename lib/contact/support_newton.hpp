@@ -12,6 +12,26 @@ inline constexpr int kMaxSteps = 12;
 inline constexpr double kDefiniteTol = 1e-10;  // λ_min(H̃) / tr(H̃) below this: leave it to the path
 inline constexpr double kPolished = 1e-14;     // balance residual that needs no refinement
 inline constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accepted only below this
+/// Adds feet with weights w (K_j where the foot is in the cell, else 0), coefficients y = q_y,
+/// x = −q_x and heights h to a pass's sums: Σ w, Σ w y, Σ w x, Σ w y², Σ w y x, Σ w x² (the cell's
+/// H) and Σ w h y, Σ w h x, Σ w h (its gradient, less Mg e_z). Sums: any struct with those nine
+/// members k, y, x, yy, yx, xx, gy, gx, gz of type V (lanes of four feet, or of four frames).
+template <class Sums, class V>
+[[gnu::always_inline]] inline void accumulate_cell(Sums& s, V w, V y, V x, V h) {
+  const V wy = w * y;
+  const V wx = w * x;
+  const V wh = w * h;
+  s.k += w;
+  s.y += wy;
+  s.x += wx;
+  s.yy += wy * y;
+  s.yx += wy * x;
+  s.xx += wx * x;
+  s.gy += wh * y;
+  s.gx += wh * x;
+  s.gz += wh;
+}
+
 /// The Newton step dv = −H⁻¹ g of a cell, H = Σ_C K a aᵀ (symmetric: entries h00 h10 h11 h20 h21
 /// h22 of the unscaled state v = (α, β, z)) and g = (g0, g1, g2), solved in the scaled state
 /// ũ = D v, D = diag(L, L, 1) (il = 1/L; H̃ = D⁻¹ H D⁻¹, g̃ = D⁻¹ g) by the adjugate. Returns whether
