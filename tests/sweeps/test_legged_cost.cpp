@@ -89,6 +89,29 @@ TEST(LeggedCost, RejectsBadKeysNamingThem) {
   rejects("[params]\nrobot = \"disk\"\nN = 6\nsequence = \"trajectory\"\n", "sequence");
   rejects("[params]\nsequence = \"walk\"\n", "sequence");
   rejects("[params]\nsequence = \"trajectory\"\nspeed = 0.2\n", "speed");
+  // The batched methods take independent frames only.
+  rejects("[params]\nsequence = \"trajectory\"\nmethod = \"model_batch\"\n", "method");
+  rejects("[params]\nsequence = \"trajectory\"\nmethod = \"support_batch\"\n", "method");
+}
+
+// The batched rows are the one-per-call rows' frames solved four per call: the same frames and
+// contacts, the support's Newton steps per frame (the batch's start is the one-frame route's
+// below 20 legs, so the same steps to within a refinement), and a time of their own.
+TEST(LeggedCost, BatchedRowsSolveTheSameFramesFourPerCall) {
+  for (const std::string& robot : kRobots) {
+    const std::vector<Cells> rows =
+        run("[params]\n" + robot + "frames = 13\nrepeats = 2\nseed = 3\n" +
+            "[axes]\nmethod = [\"support\", \"support_batch\", \"model\", \"model_batch\"]\n");
+    ASSERT_EQ(rows.size(), 4u);
+    for (const Cells& r : rows) {
+      EXPECT_EQ(num(r, "contacts_mean"), num(rows[0], "contacts_mean")) << robot;
+      EXPECT_NEAR(num(r, "newton_steps_mean"), num(rows[0], "newton_steps_mean"), 0.2) << robot;
+      EXPECT_EQ(num(r, "unconverged"), 0.0);
+      EXPECT_GT(num(r, "time_ns"), 0.0);
+      EXPECT_TRUE(std::isnan(num(r, "err_v_max")));  // no friction error for the stages
+    }
+    EXPECT_EQ(num(rows[1], "iterations_mean"), num(rows[0], "iterations_mean")) << robot;
+  }
 }
 
 // Coulomb to a relative duality gap tol: the error against the 1e-14 reference falls as tol
