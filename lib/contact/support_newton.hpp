@@ -1,5 +1,6 @@
 #pragma once
-// Internal to contact/: the fast route of the spring-support search (spring_support.hpp), an
+// Internal to contact/ (and to planning/fast_kernel.cpp, whose warm substeps take the same steps
+// and certificate): the fast route of the spring-support search (spring_support.hpp), an
 // active-set (semismooth) Newton method on the convex potential U of spring_support.cpp. Each
 // step is one vectorized pass over the feet; the answer is certified or rejected, never guessed.
 #include "contact/robot.hpp"

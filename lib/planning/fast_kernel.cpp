@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "contact/spring_support.hpp"
+#include "contact/support_newton.hpp"
 #include "core/lanes.hpp"
 #include "friction/solvers.hpp"
 #include "planning/option_kernel.hpp"
@@ -25,11 +26,13 @@ namespace slipwalk::planning::detail {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr int kMaxSteps = 8;            // then contact::spring_support decides
-constexpr double kDefiniteTol = 1e-10;  // support_newton.cpp's test of the cell's Hessian
-constexpr double kPolished = 1e-14;     // balance residual that needs no refinement
-constexpr double kRoundingCap = 1e-10;  // a stalled refinement is accepted only below this
-constexpr double kNearPlane = 1e3;      // feet this close (× rounding) to their plane: fall back
+constexpr int kMaxSteps = 8;  // then contact::spring_support decides
+// The support route's certificate (contact/support_newton.hpp): a residual that needs no
+// refinement, the cap below which a stalled refinement is accepted, and the feet this close
+// (× rounding) to their plane that send the frame to the path search.
+using contact::detail::kNearPlane;
+using contact::detail::kPolished;
+using contact::detail::kRoundingCap;
 // The viscous balance is solved here only when its pivots clear 1e-9 × trace, three decades
 // above friction's rank tolerance (1e-12, friction/balance.hpp): nearer to singular, the
 // reference decides the rank and its least-norm answer.
@@ -148,35 +151,12 @@ Cell pass(const Consts& k, const Feet& f, const double* v, std::uint32_t given) 
   return c;
 }
 
-/// support_newton.cpp's newton_step: dv = −H⁻¹ g in the scaled state (αL, βL, z) by cofactors;
-/// false when H̃ is not safely definite.
+/// support_newton.cpp's newton_step: dv = −H⁻¹ g in the scaled state (αL, βL, z) by cofactors
+/// (contact::detail::cell_newton_step, the same arithmetic); false when H̃ is not safely definite.
 bool newton_step(const Cell& c, double L, double* dv) {
   const double il = 1.0 / L;
-  const double h00 = c.h00 * il * il;
-  const double h10 = c.h01 * il * il;
-  const double h11 = c.h11 * il * il;
-  const double h20 = c.h02 * il;
-  const double h21 = c.h12 * il;
-  const double h22 = c.h22;
-  const double c00 = h11 * h22 - h21 * h21;
-  const double c01 = h21 * h20 - h10 * h22;
-  const double c02 = h10 * h21 - h11 * h20;
-  const double c11 = h00 * h22 - h20 * h20;
-  const double c12 = h10 * h20 - h00 * h21;
-  const double c22 = h00 * h11 - h10 * h10;
-  const double det = h00 * c00 + h10 * c01 + h20 * c02;
-  const double tr = h00 + h11 + h22;
-  if (!(h00 > 0.0) || !(c22 > 0.0) || !(4.0 * det > kDefiniteTol * tr * tr * tr)) {
-    return false;
-  }
-  const double b0 = -c.g0 * il;
-  const double b1 = -c.g1 * il;
-  const double b2 = -c.g2;
-  const double inv = 1.0 / det;
-  dv[0] = (c00 * b0 + c01 * b1 + c02 * b2) * inv * il;
-  dv[1] = (c01 * b0 + c11 * b1 + c12 * b2) * inv * il;
-  dv[2] = (c02 * b0 + c12 * b1 + c22 * b2) * inv;
-  return true;
+  return contact::detail::cell_newton_step(c.h00, c.h01, c.h11, c.h02, c.h12, c.h22, c.g0, c.g1,
+                                           c.g2, il, dv[0], dv[1], dv[2]);
 }
 
 /// SupportSummary::residual from the gradient.
@@ -551,33 +531,10 @@ template <bool kRead>
           changes, near, fc, fs0, fs1, fss, fb0, fb1, fb2};
 }
 
-/// newton_step per lane; the mask says where H̃ is safely definite.
+/// newton_step per lane (cell_newton_step on lanes); the mask says where H̃ is safely definite.
 [[gnu::always_inline]] inline Mask vnewton(const VCell& c, double L, V& d0, V& d1, V& d2) {
-  const double il = 1.0 / L;
-  const V h00 = c.h00 * (il * il);
-  const V h10 = c.h01 * (il * il);
-  const V h11 = c.h11 * (il * il);
-  const V h20 = c.h02 * il;
-  const V h21 = c.h12 * il;
-  const V h22 = c.h22;
-  const V c00 = h11 * h22 - h21 * h21;
-  const V c01 = h21 * h20 - h10 * h22;
-  const V c02 = h10 * h21 - h11 * h20;
-  const V c11 = h00 * h22 - h20 * h20;
-  const V c12 = h10 * h20 - h00 * h21;
-  const V c22 = h00 * h11 - h10 * h10;
-  const V det = h00 * c00 + h10 * c01 + h20 * c02;
-  const V tr = h00 + h11 + h22;
-  const V zero{};
-  const Mask ok = (h00 > zero) & (c22 > zero) & (4.0 * det > kDefiniteTol * tr * tr * tr);
-  const V b0 = -c.g0 * il;
-  const V b1 = -c.g1 * il;
-  const V b2 = -c.g2;
-  const V inv = 1.0 / det;
-  d0 = (c00 * b0 + c01 * b1 + c02 * b2) * inv * il;
-  d1 = (c01 * b0 + c11 * b1 + c12 * b2) * inv * il;
-  d2 = (c02 * b0 + c12 * b1 + c22 * b2) * inv;
-  return ok;
+  return contact::detail::cell_newton_step(c.h00, c.h01, c.h11, c.h02, c.h12, c.h22, c.g0, c.g1,
+                                           c.g2, core::Lanes<kBatch>::splat(1.0 / L), d0, d1, d2);
 }
 
 /// viscous_twist per lane; the mask says where the balance's pivots pass.
