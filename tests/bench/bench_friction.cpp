@@ -1,6 +1,7 @@
 // Cost per frame of the friction balance (§3.4) with contact and F_z given: viscous-Coulomb, the
 // local connection A, the ε-law and classical Coulomb to a relative duality gap of 1e-9 (aim: ≤ 5×
-// viscous on spring-supported hexapod frames, along a trajectory with warm starts), for 3…50 legs;
+// viscous on spring-supported hexapod frames, along a trajectory with warm starts, whose solves
+// are also timed route by route), for 3…50 legs;
 // Coulomb on a 17° slope beside the flat hexapod (aim: ≤ 1.5× flat); and the whole frame
 // (connection::evaluate: spring support, A, friction law; aims: ≤ 0.15 µs for a hexapod and
 // ≤ 8 ns per leg, the slope of a + b N over the disk robots) and the spring support alone, the
@@ -18,6 +19,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -376,6 +378,93 @@ void BM_CoulombTrajectoryHexapodCold1e9(benchmark::State& state) {
       [&opt](const Robot& r, Frame& f) { slipwalk::friction::solve_coulomb(r, f, opt); });
 }
 
+/// The walk's warm Coulomb solves by what they do, so that the cost of each route can be read off
+/// (the walk's own row times their mix). Along the walk of make_trajectory_hexapod_pool, each
+/// frame's solve is recorded with the state the previous solve left in the frame, its velocity
+/// and its feet's static marks (all that a warm solve reads of it), and classed by the route it
+/// took: 0, the previous frame's static foot kept and one polish step; 1, the same in two steps;
+/// 2, a static pair kept with no step; 3, three steps or more (the tripod's hand-overs, where two
+/// feet slow down together). The benchmark replays its class's frames from those states in turn.
+/// Counters: share, the class's fraction of the walk's frames; same, the fraction of the replays
+/// that took the walk's own number of steps (1: the replay is the walk's solve).
+class WalkRoutes {
+ public:
+  static constexpr int kClasses = 4;
+  WalkRoutes() : pool_(make_trajectory_hexapod_pool()) {
+    slipwalk::friction::CoulombOptions opt = options();
+    Frame& f = pool_.frame;
+    for (std::size_t i = 0; i < pool_.inputs.size(); ++i) {
+      pool_.load(i);
+      const Eigen::Vector3d v = f.v_body;
+      const std::vector<int> marks = f.work_idx;
+      slipwalk::friction::solve_coulomb(pool_.robot, f, opt);
+      const int c = route(f.friction.static_feet, f.friction.iterations);
+      if (c >= 0) {
+        frames_[static_cast<std::size_t>(c)].push_back(Replay{i, v, marks, f.friction.iterations});
+      }
+    }
+  }
+  static slipwalk::friction::CoulombOptions options() {
+    slipwalk::friction::CoulombOptions opt;
+    opt.tol = 1e-9;
+    opt.warm_start = true;
+    return opt;
+  }
+  void run(benchmark::State& state, int c) {
+    const std::vector<Replay>& replays = frames_[static_cast<std::size_t>(c)];
+    if (replays.empty()) {
+      state.SkipWithError("no frame of this class on the walk");
+      return;
+    }
+    const slipwalk::friction::CoulombOptions opt = options();
+    Frame& f = pool_.frame;
+    std::size_t next = 0;
+    double same = 0.0;
+    long long calls = 0;
+    while (state.KeepRunningBatch(1)) {
+      const Replay& r = replays[next];
+      next = (next + 1) % replays.size();
+      pool_.load(r.input);
+      f.v_body = r.v_body;
+      f.work_idx = r.marks;  // same size: a copy, no allocation
+      slipwalk::friction::solve_coulomb(pool_.robot, f, opt);
+      benchmark::DoNotOptimize(f.v_body.data());
+      same += f.friction.iterations == r.iterations ? 1.0 : 0.0;
+      ++calls;
+    }
+    std::size_t all = 0;
+    for (const auto& v : frames_) {
+      all += v.size();
+    }
+    state.counters["share"] = static_cast<double>(replays.size()) / static_cast<double>(all);
+    state.counters["same"] = same / static_cast<double>(calls > 0 ? calls : 1);
+  }
+
+ private:
+  struct Replay {
+    std::size_t input;
+    Eigen::Vector3d v_body;
+    std::vector<int> marks;
+    int iterations;
+  };
+  static int route(int static_feet, int steps) {
+    if (steps >= 3) {
+      return 3;
+    }
+    if (static_feet == 1 && (steps == 1 || steps == 2)) {
+      return steps - 1;
+    }
+    return static_feet == 2 && steps == 0 ? 2 : -1;
+  }
+  Pool pool_;
+  std::array<std::vector<Replay>, kClasses> frames_;
+};
+
+void BM_CoulombTrajectoryHexapodRoute(benchmark::State& state) {
+  static WalkRoutes routes;  // the walk is solved once for all four classes
+  routes.run(state, static_cast<int>(state.range(0)));
+}
+
 #define LEGS Arg(3)->Arg(6)->Arg(12)->Arg(24)->Arg(50)
 BENCHMARK(BM_CopyInputs)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_Viscous)->LEGS->Unit(benchmark::kNanosecond);
@@ -395,6 +484,10 @@ BENCHMARK(BM_ModelViscousBatch)->LEGS->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ViscousTrajectoryHexapod)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombTrajectoryHexapod1e9)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_CoulombTrajectoryHexapodCold1e9)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_CoulombTrajectoryHexapodRoute)
+    ->ArgName("route")
+    ->DenseRange(0, WalkRoutes::kClasses - 1)
+    ->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_ModelTrajectoryHexapod)->ArgName("warm")->Arg(0)->Arg(1)->Unit(benchmark::kNanosecond);
 
 }  // namespace
