@@ -1,21 +1,20 @@
 // Cost per frame of the friction balance (§3.4) with contact and F_z given: viscous-Coulomb, the
 // local connection A, the ε-law and classical Coulomb to a relative duality gap of 1e-9 (aim: ≤ 5×
-// viscous on spring-supported hexapod frames, along a trajectory with warm starts, whose solves
-// are also timed route by route), for 3…50 legs;
-// Coulomb on a 17° slope beside the flat hexapod (aim: ≤ 1.5× flat); and the whole frame
-// (connection::evaluate: spring support, A, friction law; aims: ≤ 0.15 µs for a hexapod and
-// ≤ 8 ns per leg, the slope of a + b N over the disk robots) and the spring support alone, the
-// rows Fig. 3.13a times; both also four independent frames at a time (evaluate_batch,
-// spring_support_batch: the counter "frame" is their time per frame). (The report's performance
-// page measures the same aims on the ch3_legged cost study, with the arithmetic each stage must do
-// beside them.) Robots as in thesis §3.5.3 / Fig. 3.13: a disk of radius 0.3 m with N legs equally
-// spaced on the rim; 4096 random poses and velocities per N, all feet on the ground with random
-// loads (for the whole frame: random leg heights, so that the support search works). Each is copied
-// into one working frame before the call (BM_CopyInputs times the copy alone): so many inputs that
-// the branch predictor cannot learn the sequence (with 256, a current CPU memorizes it for small N
-// and a 12-leg spring support looked twice as fast as it is), one frame so that they need not fit
-// in the caches. Compare the rows as ratios; the counter "legs" lets a script fit time = a + b N
-// per row.
+// viscous on spring-supported hexapod frames, along a trajectory with warm starts, whose solves are
+// also timed route by route), for 3…50 legs; Coulomb on a 17° slope beside the flat hexapod (aim:
+// ≤ 1.5× flat); and the whole frame (connection::evaluate: spring support, A, friction law; aims:
+// ≤ 0.15 µs for a hexapod and ≤ 8 ns per leg, the slope of a + b N over the disk robots) and the
+// spring support alone, the rows Fig. 3.13a times; both also four independent frames at a time
+// (evaluate_batch, spring_support_batch: the counter "frame" is their time per frame). (The
+// report's performance page measures the same aims on the ch3_legged cost study, with the
+// arithmetic each stage must do beside them.) Robots as in thesis §3.5.3 / Fig. 3.13: a disk of
+// radius 0.3 m with N legs equally spaced on the rim; 4096 random poses and velocities per N, all
+// feet on the ground with random loads (for the whole frame: random leg heights, so that the
+// support search works). Each is copied into one working frame before the call (BM_CopyInputs times
+// the copy alone): so many inputs that the branch predictor cannot learn the sequence (with 256, a
+// current CPU memorizes it for small N and a 12-leg spring support looked twice as fast as it is),
+// one frame so that they need not fit in the caches. Compare the rows as ratios; the counter "legs"
+// lets a script fit time = a + b N per row.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
