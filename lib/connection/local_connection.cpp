@@ -56,33 +56,27 @@ SLIPWALK_CLONES void columns_from_rows(contact::Frame& frame, const Eigen::Matri
   using Row = contact::ViscousScratch::Row;
   using L = core::Lanes<4>;
   using V = L::V;
-  const V p00 = L::splat(P(0, 0)), p01 = L::splat(P(0, 1)), p02 = L::splat(P(0, 2));
-  const V p10 = L::splat(P(1, 0)), p11 = L::splat(P(1, 1)), p12 = L::splat(P(1, 2));
-  const V p20 = L::splat(P(2, 0)), p21 = L::splat(P(2, 1)), p22 = L::splat(P(2, 2));
+  const friction::detail::IsotropicColumns<V> columns{
+      L::splat(P(0, 0)), L::splat(P(0, 1)), L::splat(P(0, 2)),  //
+      L::splat(P(1, 0)), L::splat(P(1, 1)), L::splat(P(1, 2)),  //
+      L::splat(P(2, 0)), L::splat(P(2, 1)), L::splat(P(2, 2))};
   const double* const cs = frame.viscous.rows.row(Row::kC).data();
   const double* const xs = frame.viscous.rows.row(Row::kQx).data();
   const double* const ys = frame.viscous.rows.row(Row::kQy).data();
   double* const a = frame.A.data();
   const Eigen::Index n = frame.legs();
   for (Eigen::Index j = 0; j < n; j += 4) {  // the rows are padded to a multiple of four
-    const V c = L::load(cs + j);
-    const V s0 = -L::load(ys + j) * c;  // c (S q)_x
-    const V s1 = L::load(xs + j) * c;   // c (S q)_y
-    const V e0 = -(p00 * c + p02 * s0);
-    const V e1 = -(p10 * c + p12 * s0);
-    const V e2 = -(p20 * c + p22 * s0);
-    const V e3 = -(p01 * c + p02 * s1);
-    const V e4 = -(p11 * c + p12 * s1);
-    const V e5 = -(p21 * c + p22 * s1);
+    V e[6];
+    columns(L::load(cs + j), L::load(xs + j), L::load(ys + j), e);
     double* const col = a + 6 * j;
     if (j + 4 <= n) {
       // Lanes 0 and 2, then 1 and 3, of each pair of rows; then the four feet's runs of six.
-      const V t01 = __builtin_shufflevector(e0, e1, 0, 4, 2, 6);
-      const V t23 = __builtin_shufflevector(e2, e3, 0, 4, 2, 6);
-      const V t45 = __builtin_shufflevector(e4, e5, 0, 4, 2, 6);
-      const V u01 = __builtin_shufflevector(e0, e1, 1, 5, 3, 7);
-      const V u23 = __builtin_shufflevector(e2, e3, 1, 5, 3, 7);
-      const V u45 = __builtin_shufflevector(e4, e5, 1, 5, 3, 7);
+      const V t01 = __builtin_shufflevector(e[0], e[1], 0, 4, 2, 6);
+      const V t23 = __builtin_shufflevector(e[2], e[3], 0, 4, 2, 6);
+      const V t45 = __builtin_shufflevector(e[4], e[5], 0, 4, 2, 6);
+      const V u01 = __builtin_shufflevector(e[0], e[1], 1, 5, 3, 7);
+      const V u23 = __builtin_shufflevector(e[2], e[3], 1, 5, 3, 7);
+      const V u45 = __builtin_shufflevector(e[4], e[5], 1, 5, 3, 7);
       L::store(col, __builtin_shufflevector(t01, t23, 0, 1, 4, 5));
       L::store(col + 4, __builtin_shufflevector(t45, u01, 0, 1, 4, 5));
       L::store(col + 8, __builtin_shufflevector(u23, u45, 0, 1, 4, 5));
@@ -92,13 +86,9 @@ SLIPWALK_CLONES void columns_from_rows(contact::Frame& frame, const Eigen::Matri
       continue;
     }
     for (Eigen::Index i = 0; j + i < n; ++i) {  // the last feet, entry by entry
-      double* const foot = col + 6 * i;
-      foot[0] = e0[i];
-      foot[1] = e1[i];
-      foot[2] = e2[i];
-      foot[3] = e3[i];
-      foot[4] = e4[i];
-      foot[5] = e5[i];
+      for (int r = 0; r < 6; ++r) {
+        col[6 * i + r] = e[r][i];
+      }
     }
   }
 }

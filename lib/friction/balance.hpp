@@ -196,6 +196,26 @@ struct IsotropicSums {
   }
 };
 
+/// The two columns of A_k = −c_k P J_kᵀ (eq. 3.20) of an isotropic foot (G = I): −P (c, 0, −c q_y)
+/// and −P (0, c, c q_x), as foot k's six entries of A (column-major 3 × 2N), with P = M⁺ unscaled
+/// and read entry by entry (p_ij: row i, column j; the one-frame route's P is symmetric only to
+/// rounding where it comes from an eigendecomposition). Lanes as for IsotropicSums: four feet of
+/// one frame (connection/local_connection.cpp) or one foot of four frames (viscous_batch.cpp).
+template <class V>
+struct IsotropicColumns {
+  V p00, p01, p02, p10, p11, p12, p20, p21, p22;
+  [[gnu::always_inline]] void operator()(V c, V x, V y, V (&e)[6]) const {
+    const V s0 = -y * c;  // c (S q)_x
+    const V s1 = x * c;   // c (S q)_y
+    e[0] = -(p00 * c + p02 * s0);
+    e[1] = -(p10 * c + p12 * s0);
+    e[2] = -(p20 * c + p22 * s0);
+    e[3] = -(p01 * c + p02 * s1);
+    e[4] = -(p11 * c + p12 * s1);
+    e[5] = -(p21 * c + p22 * s1);
+  }
+};
+
 /// Assembles M̃ = Σ c_k φ_k J̃ᵀ G J̃ and b̃ = Σ c_k φ_k J̃ᵀ G q̇ (φ ≡ 1) in scaled coordinates.
 template <bool kAniso>
 void viscous_system(const contact::Robot& robot, const contact::Frame& frame, double inv_L,

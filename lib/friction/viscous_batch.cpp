@@ -128,6 +128,7 @@ SLIPWALK_CLONES unsigned viscous_group(const contact::Robot& robot, contact::Fra
   const V p02 = e2 * n20 * il;
   const V p12 = e2 * n21 * il;
   const V p22 = e2 * il * il;
+  const detail::IsotropicColumns<V> columns{p00, p01, p02, p01, p11, p12, p02, p12, p22};
 
   // ---- the columns of A (−P (c, 0, −c q_y), −P (0, c, c q_x)) and the forces F = −c u --------
   double* A[kLanes];
@@ -143,14 +144,8 @@ SLIPWALK_CLONES unsigned viscous_group(const contact::Robot& robot, contact::Fra
     const V y = L::load(ys + kLanes * j);
     const V dx = L::load(dxs + kLanes * j);
     const V dy = L::load(dys + kLanes * j);
-    const V s0 = -y * c;
-    const V s1 = x * c;
-    const V a0 = -(p00 * c + p02 * s0);
-    const V a1 = -(p01 * c + p12 * s0);
-    const V a2 = -(p02 * c + p22 * s0);
-    const V a3 = -(p01 * c + p02 * s1);
-    const V a4 = -(p11 * c + p12 * s1);
-    const V a5 = -(p12 * c + p22 * s1);
+    V a[6];
+    columns(c, x, y, a);
     const V u0 = v0 - om * y + dx;
     const V u1 = v1 + om * x + dy;
     const V F0 = -c * u0;
@@ -160,12 +155,9 @@ SLIPWALK_CLONES unsigned viscous_group(const contact::Robot& robot, contact::Fra
         continue;
       }
       double* const col = A[i] + 6 * j;
-      col[0] = a0[i];
-      col[1] = a1[i];
-      col[2] = a2[i];
-      col[3] = a3[i];
-      col[4] = a4[i];
-      col[5] = a5[i];
+      for (int e = 0; e < 6; ++e) {
+        col[e] = a[e][i];
+      }
       F[i][2 * j] = F0[i];
       F[i][2 * j + 1] = F1[i];
     }
