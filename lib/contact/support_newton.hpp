@@ -5,6 +5,7 @@
 // step is one vectorized pass over the feet; the answer is certified or rejected, never guessed.
 #include "contact/robot.hpp"
 #include "core/lanes.hpp"  // cell_newton_step takes its lanes (and -Wpsabi is off for them there)
+#include "core/sym3.hpp"
 
 namespace slipwalk::contact::detail {
 
@@ -51,22 +52,16 @@ template <class T>
   const T h22 = H22;
   // Cofactors: all independent, one division (an LDLᵀ chains three, which cost more than the
   // rest of a step on small robots).
-  const T c00 = h11 * h22 - h21 * h21;
-  const T c01 = h21 * h20 - h10 * h22;
-  const T c02 = h10 * h21 - h11 * h20;
-  const T c11 = h00 * h22 - h20 * h20;
-  const T c12 = h10 * h20 - h00 * h21;
-  const T c22 = h00 * h11 - h10 * h10;
-  const T det = h00 * c00 + h10 * c01 + h20 * c02;
+  const core::Sym3Adjugate<T> a = core::sym3_adjugate(h00, h10, h11, h20, h21, h22);
   const T tr = h00 + h11 + h22;
   const T b0 = -g0 * il;
   const T b1 = -g1 * il;
   const T b2 = -g2;
-  const T inv = 1.0 / det;
-  d0 = (c00 * b0 + c01 * b1 + c02 * b2) * inv * il;
-  d1 = (c01 * b0 + c11 * b1 + c12 * b2) * inv * il;
-  d2 = (c02 * b0 + c12 * b1 + c22 * b2) * inv;
-  return (h00 > 0.0) & (c22 > 0.0) & (4.0 * det > kDefiniteTol * tr * tr * tr);
+  const T inv = 1.0 / a.det;
+  d0 = (a.c00 * b0 + a.c01 * b1 + a.c02 * b2) * inv * il;
+  d1 = (a.c01 * b0 + a.c11 * b1 + a.c12 * b2) * inv * il;
+  d2 = (a.c02 * b0 + a.c12 * b1 + a.c22 * b2) * inv;
+  return (h00 > 0.0) & (a.c22 > 0.0) & (4.0 * a.det > kDefiniteTol * tr * tr * tr);
 }
 
 // A foot this many times the heights' rounding error or closer to its plane at the end may carry

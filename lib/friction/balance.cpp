@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/lanes.hpp"
+#include "core/sym3.hpp"
 
 namespace slipwalk::friction::detail {
 
@@ -266,12 +267,11 @@ bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol) {
   // three divisions are independent instead of chained, and the reciprocal pivots are kept for
   // solve(): a 3 × 3 solve sits on the serial path of every Newton step, where latency shows.
   const double floor = pivot_tol * std::max(M.trace(), 0.0);
+  const core::Sym3Adjugate<double> adj =
+      core::sym3_adjugate(M(0, 0), M(1, 0), M(1, 1), M(2, 0), M(2, 1), M(2, 2));
   const double m1 = M(0, 0);
-  const double m2 = M(0, 0) * M(1, 1) - M(1, 0) * M(1, 0);
-  const double c0 = M(1, 1) * M(2, 2) - M(2, 1) * M(2, 1);
-  const double c1 = M(2, 0) * M(2, 1) - M(1, 0) * M(2, 2);
-  const double c2 = M(1, 0) * M(2, 1) - M(2, 0) * M(1, 1);
-  const double m3 = M(0, 0) * c0 + M(1, 0) * c1 + M(2, 0) * c2;
+  const double m2 = adj.c22;
+  const double m3 = adj.det;
   if (!(m1 > floor && m2 > floor * m1 && m3 > floor * m2)) {
     return false;
   }

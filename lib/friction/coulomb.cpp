@@ -97,6 +97,7 @@
 #include <utility>
 
 #include "core/csv.hpp"
+#include "core/sym3.hpp"
 #include "friction/coulomb_solver.hpp"
 
 namespace slipwalk::friction {
@@ -206,22 +207,17 @@ bool kink_step(const Eigen::Vector3d& g, const Eigen::Matrix3d& H,
 /// leading minors, without dividing.
 bool solve_spd3(const Eigen::Matrix3d& M, const Eigen::Vector3d& b, double tol,
                 Eigen::Vector3d& x) {
-  const double m00 = M(0, 0), m01 = M(0, 1), m02 = M(0, 2);
-  const double m11 = M(1, 1), m12 = M(1, 2), m22 = M(2, 2);
-  const double a00 = m11 * m22 - m12 * m12;
-  const double a01 = m02 * m12 - m01 * m22;
-  const double a02 = m01 * m12 - m02 * m11;
-  const double a11 = m00 * m22 - m02 * m02;
-  const double a12 = m01 * m02 - m00 * m12;
-  const double a22 = m00 * m11 - m01 * m01;
-  const double det = m00 * a00 + m01 * a01 + m02 * a02;
-  const double t = tol * (m00 + m11 + m22);
-  if (!(m00 > t && a22 > t * m00 && det > t * a22)) {
+  // (The upper triangle: M may be symmetric only to rounding, H − t tᵀ/‖r‖ in kink_newton.)
+  const core::Sym3Adjugate<double> a =
+      core::sym3_adjugate(M(0, 0), M(0, 1), M(1, 1), M(0, 2), M(1, 2), M(2, 2));
+  const double t = tol * (M(0, 0) + M(1, 1) + M(2, 2));
+  if (!(M(0, 0) > t && a.c22 > t * M(0, 0) && a.det > t * a.c22)) {
     return false;
   }
-  const double inv = 1.0 / det;
-  x << (a00 * b(0) + a01 * b(1) + a02 * b(2)) * inv, (a01 * b(0) + a11 * b(1) + a12 * b(2)) * inv,
-      (a02 * b(0) + a12 * b(1) + a22 * b(2)) * inv;
+  const double inv = 1.0 / a.det;
+  x << (a.c00 * b(0) + a.c01 * b(1) + a.c02 * b(2)) * inv,
+      (a.c01 * b(0) + a.c11 * b(1) + a.c12 * b(2)) * inv,
+      (a.c02 * b(0) + a.c12 * b(1) + a.c22 * b(2)) * inv;
   return true;
 }
 
