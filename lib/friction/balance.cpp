@@ -84,10 +84,10 @@ Contacts viscous_balance_general(const contact::Robot& robot, contact::Frame& fr
   out.active = active;
   out.c_sum = c_sum;
   out.anisotropic = aniso > 0.0;
-  out.set_lever_scale(L2);
-  const double il = out.inv_L;
-  M << m00, m01, m02 * il, m01, m11, m12 * il, m02 * il, m12 * il, m22 * il * il;
-  b << b0, b1, b2 * il;
+  out.set_lever_squared(L2);
+  out.unscaled = true;
+  M << m00, m01, m02, m01, m11, m12, m02, m12, m22;
+  b << b0, b1, b2;
   return out;
 }
 
@@ -167,12 +167,12 @@ template <bool kFromSupport>
   out.c_sum = counts[1];
   out.anisotropic = false;
   out.rows = true;
-  out.set_lever_scale(std::max(std::max(L2[0], L2[1]), std::max(L2[2], L2[3])));
-  const double il = out.inv_L;
-  const double sx = counts[2] * il;
-  const double sy = counts[3] * il;
-  M << out.c_sum, 0.0, -sy, 0.0, out.c_sum, sx, -sy, sx, moments[0] * il * il;
-  b << moments[1], moments[2], moments[3] * il;
+  out.set_lever_squared(std::max(std::max(L2[0], L2[1]), std::max(L2[2], L2[3])));
+  out.unscaled = true;
+  const double sx = counts[2];
+  const double sy = counts[3];
+  M << out.c_sum, 0.0, -sy, 0.0, out.c_sum, sx, -sy, sx, moments[0];
+  b << moments[1], moments[2], moments[3];
   return true;
 }
 
@@ -261,18 +261,20 @@ Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eig
   return viscous_balance_general(robot, frame, M, b);
 }
 
-bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol) {
+bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol, double L2) {
   // Unpivoted LDLᵀ of a symmetric matrix; a pivot ≤ pivot_tol · trace means "not definite".
   // Written through the leading minors m₁, m₂, m₃ (d₀ = m₁, d₁ = m₂/m₁, d₂ = m₃/m₂), so that the
   // three divisions are independent instead of chained, and the reciprocal pivots are kept for
   // solve(): a 3 × 3 solve sits on the serial path of every Newton step, where latency shows.
-  const double floor = pivot_tol * std::max(M.trace(), 0.0);
+  // The test is that of D M D, D = diag(1, 1, 1/L): leading minors m₁, m₂ and m₃ / L², trace
+  // T = M₀₀ + M₁₁ + M₂₂ / L², each side multiplied by L² (no division; L2 = 1: M's own test).
+  const double floor = pivot_tol * std::max((M(0, 0) + M(1, 1)) * L2 + M(2, 2), 0.0);  // tol T L²
   const core::Sym3Adjugate<double> adj =
       core::sym3_adjugate(M(0, 0), M(1, 0), M(1, 1), M(2, 0), M(2, 1), M(2, 2));
   const double m1 = M(0, 0);
   const double m2 = adj.c22;
   const double m3 = adj.det;
-  if (!(m1 > floor && m2 > floor * m1 && m3 > floor * m2)) {
+  if (!(m1 * L2 > floor && m2 * L2 > floor * m1 && m3 > floor * m2)) {
     return false;
   }
   const double i1 = 1.0 / m1;
@@ -287,13 +289,13 @@ bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol) {
 }
 
 bool Psd3::factorize_definite(const Eigen::Matrix3d& M, double pivot_tol) {
-  chol_ = ldlt(M, pivot_tol);
+  chol_ = ldlt(M, pivot_tol, 1.0);
   rank_ = chol_ ? 3 : -1;
   return chol_;
 }
 
 bool Psd3::factorize(const Eigen::Matrix3d& M) {
-  if (ldlt(M, kRankTol)) {
+  if (ldlt(M, kRankTol, 1.0)) {
     chol_ = true;
     rank_ = 3;
     return true;
@@ -313,6 +315,31 @@ bool Psd3::factorize(const Eigen::Matrix3d& M) {
     }
   }
   return false;
+}
+
+bool Psd3::factorize_unscaled(const Eigen::Matrix3d& M, double L2) {
+  chol_ = ldlt(M, kRankTol, L2);
+  rank_ = chol_ ? 3 : -1;
+  return chol_;
+}
+
+void factorize_system(Psd3& solver, Contacts& cs, Eigen::Matrix3d& M, Eigen::Vector3d& b) {
+  if (cs.unscaled && solver.factorize_unscaled(M, cs.L2)) {
+    return;
+  }
+  if (cs.unscaled) {
+    // M̃ = D M D and b̃ = D b, D = diag(1, 1, 1/L): the products of a scaled assembly, in its order.
+    cs.set_lever_scale(cs.L2);
+    const double il = cs.inv_L;
+    M(0, 2) *= il;
+    M(1, 2) *= il;
+    M(2, 0) *= il;
+    M(2, 1) *= il;
+    M(2, 2) = M(2, 2) * il * il;
+    b(2) *= il;
+    cs.unscaled = false;
+  }
+  solver.factorize(M);
 }
 
 Eigen::Vector3d Psd3::solve(const Eigen::Vector3d& b) const {

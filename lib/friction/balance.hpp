@@ -23,7 +23,11 @@
 // Numerics. The solvers work in scaled coordinates y = (v_x, v_y, L ω) with L the largest lever
 // arm ‖q_xy,k‖ of a foot with friction (J̃_k = [I | S q_k / L]): all three unknowns are then
 // velocities, M̃ = D M D (D = diag(1, 1, 1/L)) is well scaled, "least norm" is unit-consistent
-// and one relative rank tolerance serves every robot size.
+// and one relative rank tolerance serves every robot size. The viscous system is the exception
+// where M̃ is safely definite: the rank test is M̃'s (Psd3::factorize_unscaled, through L² alone),
+// but the LDLᵀ and the solve are M's own, since L comes last in its assembly (a maximum over the
+// feet, a √, a division) and would otherwise stand between the sums and the solve. A diagonal
+// scaling commutes with an unpivoted LDLᵀ, so the two differ by rounding only.
 #include <Eigen/Core>
 #include <cmath>
 #include <limits>
@@ -51,14 +55,26 @@ struct Contacts {
   int active = 0;            ///< feet with c_k > 0
   double L = 1.0;            ///< lever scale, m (max ‖q_xy,k‖ over active feet; 1 if all at 0)
   double inv_L = 1.0;        ///< 1 / L
+  double L2 = 1.0;           ///< L², m²
   double c_sum = 0.0;        ///< Σ c_k, N
   bool anisotropic = false;  ///< some active foot has w_k ≠ 0
   bool rows = false;         ///< viscous_balance left the feet as rows in frame.viscous
+  /// viscous_balance's M and b are those of x = (v_x, v_y, ω) itself, not of the scaled y, and
+  /// only L2 is set (factorize_system() scales them, and sets L, where M̃ is not safely definite)
+  bool unscaled = false;
 
-  /// L and 1/L from L² = max ‖q_xy,k‖² over the active feet (L = 1 when all are at the origin).
-  void set_lever_scale(double L2) {
-    L = L2 > 0.0 ? std::sqrt(L2) : 1.0;
+  /// L², L and 1/L from L² = max ‖q_xy,k‖² over the active feet (L = 1 when all are at the origin).
+  void set_lever_scale(double lever2) {
+    set_lever_squared(lever2);
+    L = std::sqrt(L2);
     inv_L = 1.0 / L;
+  }
+  /// L² alone: the unscaled viscous system needs no more where it is definite, and L and 1/L
+  /// cost a √ and a division (factorize_system()). L and 1/L are NaN until set_lever_scale(L2).
+  void set_lever_squared(double lever2) {
+    L2 = lever2 > 0.0 ? lever2 : 1.0;
+    L = std::numeric_limits<double>::quiet_NaN();
+    inv_L = L;
   }
 };
 Contacts prepare(const contact::Robot& robot, contact::Frame& frame);
@@ -157,6 +173,10 @@ class Psd3 {
   /// pivot_tol · trace (the caller then uses another matrix); solve() is only valid after a true
   /// return.
   bool factorize_definite(const Eigen::Matrix3d& M, double pivot_tol = kRankTol);
+  /// factorize() of M̃ = D M D, D = diag(1, 1, 1/L) (L² = L2 > 0), where M̃ passes the rank test,
+  /// but with M's own factors: solve() and inverse() are then in M's coordinates. Returns false,
+  /// with nothing factorized, where M̃ is not safely definite (the caller then factorizes M̃).
+  bool factorize_unscaled(const Eigen::Matrix3d& M, double L2);
   [[nodiscard]] Eigen::Vector3d solve(const Eigen::Vector3d& b) const;
   [[nodiscard]] Eigen::Matrix3d inverse() const;
   [[nodiscard]] int rank() const { return rank_; }
@@ -166,7 +186,7 @@ class Psd3 {
   void add_null_space(Eigen::Matrix3d& A, double scale) const;
 
  private:
-  bool ldlt(const Eigen::Matrix3d& M, double pivot_tol);
+  bool ldlt(const Eigen::Matrix3d& M, double pivot_tol, double L2);
   bool chol_ = true;
   int rank_ = 3;
   double l10_ = 0, l20_ = 0, l21_ = 0;
@@ -235,15 +255,20 @@ void viscous_system(const contact::Robot& robot, const contact::Frame& frame, do
 }
 
 /// prepare() and viscous_system() in one pass, for callers that need G only (not W): the contact
-/// summary, M̃ and b̃ (φ ≡ 1) in scaled coordinates, and c_k (0 for a foot without friction). L is
-/// known only at the end of the pass, so the lever column is summed unscaled (S q) and scaled
-/// afterwards. For an isotropic robot (every w_k = 0) the feet and c_k are left as rows in
+/// summary, M and b (φ ≡ 1) of the unscaled x = (v, ω) (Contacts::unscaled: see the top), and c_k
+/// (0 for a foot without friction). For an isotropic robot (every w_k = 0) the feet and c_k are
+/// left as rows in
 /// frame.viscous (contact/robot.hpp, ViscousScratch), which the force pass of the viscous-Coulomb
 /// solve reads (Contacts::rows says so); otherwise c_k is left in frame.work_n.
 /// With from_support, an isotropic frame whose support the Newton route certified is read from the
 /// rows that route left (friction::FeetSource::kSupportRows, viscous_system.hpp).
 Contacts viscous_balance(const contact::Robot& robot, contact::Frame& frame, Eigen::Matrix3d& M,
                          Eigen::Vector3d& b, bool from_support = false);
+
+/// Factorizes viscous_balance's system for the solve: unscaled where M̃ is safely definite (the
+/// usual case), else M and b scaled in place to M̃ and b̃ (cs.unscaled then false) and factorized
+/// least-norm in the scaled coordinates, as for every other system of this file.
+void factorize_system(Psd3& solver, Contacts& cs, Eigen::Matrix3d& M, Eigen::Vector3d& b);
 
 /// The sums over the feet of a viscous-Coulomb force pass: Σ F_k, Σ (q_k × F_k)_z, the
 /// dissipation −Σ F_k·u_k and the size of the terms that cancel, Σ c_k ‖G_k‖ (‖q̇_k‖ + ‖J_k x‖).
@@ -285,6 +310,16 @@ struct BalanceSum {
     const double r = force.norm();
     const double m = std::abs(moment) / L;
     return (r > m ? r : m) * (1.0 / force_scale);
+  }
+  /// The same from L² (the unscaled viscous system's, which takes no √ of it): the root of
+  /// max(‖ΣF‖², ΣM² / L²), over force_scale.
+  [[nodiscard]] double residual_from_squared_lever(double force_scale, double L2) const {
+    if (!(force_scale > 0.0)) {
+      return 0.0;
+    }
+    const double r2 = force.squaredNorm();
+    const double m2 = moment * moment / L2;
+    return std::sqrt(r2 > m2 ? r2 : m2) * (1.0 / force_scale);
   }
 };
 

@@ -49,17 +49,21 @@ detail::ForceSums viscous_forces(const contact::Robot& robot, contact::Frame& fr
 template <bool kLoaded>
 void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Psd3& solver,
             const detail::Contacts& cs, const Eigen::Vector3d& b, const Eigen::Vector3d& load) {
-  // ---- the 3 × 3 balance in scaled coordinates, least norm when singular --------------------
+  // ---- the 3 × 3 balance, unscaled where definite, else least norm in scaled coordinates -----
   Eigen::Vector3d rhs = -b;
   if constexpr (kLoaded) {
     // Scaled coordinates y = (v, L ω): the moment row is divided by L like b's (balance.hpp).
-    rhs += Eigen::Vector3d(load(0), load(1), load(2) * cs.inv_L);
+    rhs += cs.unscaled ? load : Eigen::Vector3d(load(0), load(1), load(2) * cs.inv_L);
   }
   const Eigen::Vector3d y = solver.solve(rhs);
-  detail::set_velocity(frame, y, cs.L);
+  if (cs.unscaled) {
+    frame.v_body = y;
+  } else {
+    detail::set_velocity(frame, y, cs.L);
+  }
 
   // ---- forces F_k = −c_k G_k u_k, dissipation, balance and the size of the cancelling terms --
-  // u_k = v + ω S q_k + q̇_k in body coordinates (v = y_xy, ω = y_2/L).
+  // u_k = v + ω S q_k + q̇_k in body coordinates (v_body as just written).
   const double v0 = frame.v_body(0);
   const double v1 = frame.v_body(1);
   const double om = frame.v_body(2);
@@ -76,7 +80,8 @@ void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Ps
     // The load is one of the cancelling terms: Σ F_k + f = 0 and Σ M_k + M_f = 0.
     sum.force += load.head<2>();
     sum.moment += load(2);
-    scale += std::abs(load(0)) + std::abs(load(1)) + std::abs(load(2)) * cs.inv_L;
+    const double inv_L = cs.unscaled ? 1.0 / std::sqrt(cs.L2) : cs.inv_L;
+    scale += std::abs(load(0)) + std::abs(load(1)) + std::abs(load(2)) * inv_L;
   }
 
   auto& s = frame.friction;
@@ -85,7 +90,8 @@ void finish(const contact::Robot& robot, contact::Frame& frame, const detail::Ps
   s.certificate = 0.0;
   s.static_feet = 0;
   s.dissipation = dissipation;
-  s.residual = sum.residual(scale, cs.L);
+  s.residual =
+      cs.unscaled ? sum.residual_from_squared_lever(scale, cs.L2) : sum.residual(scale, cs.L);
   s.unique = solver.rank() == 3;
   s.message.clear();
   if (cs.active == 0) {
@@ -120,9 +126,9 @@ template <bool kLoaded>
 void solve(const contact::Robot& robot, contact::Frame& frame, const Eigen::Vector3d& load) {
   Eigen::Matrix3d M;
   Eigen::Vector3d b;
-  const detail::Contacts cs = detail::viscous_balance(robot, frame, M, b);
+  detail::Contacts cs = detail::viscous_balance(robot, frame, M, b);
   detail::Psd3 solver;
-  solver.factorize(M);
+  detail::factorize_system(solver, cs, M, b);
   finish<kLoaded>(robot, frame, solver, cs, b, load);
 }
 
@@ -135,11 +141,14 @@ ViscousSystem::ViscousSystem(const contact::Robot& robot, contact::Frame& frame,
   if (contacts_.rows) {
     weights_ = frame.viscous.rows.row(contact::ViscousScratch::Row::kC).data();
   }
-  solver_.factorize(M);
+  detail::factorize_system(solver_, contacts_, M, b_);
 }
 
 Eigen::Matrix3d ViscousSystem::inverse() const {
   Eigen::Matrix3d P = solver_.inverse();
+  if (contacts_.unscaled) {
+    return P;
+  }
   P.row(2) *= contacts_.inv_L;
   P.col(2) *= contacts_.inv_L;
   return P;

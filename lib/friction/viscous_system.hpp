@@ -56,8 +56,9 @@ class ViscousSystem {
 
   const double* weights_;      ///< where the assembly left c_k (frame.viscous or frame.work_n)
   detail::Contacts contacts_;  ///< active feet, lever scale L, anisotropy
-  detail::Psd3 solver_;        ///< M̃ factorized (scaled coordinates)
-  Eigen::Vector3d b_;          ///< b̃ (scaled coordinates)
+  /// M factorized: in body coordinates where definite (contacts_.unscaled), else M̃ (scaled)
+  detail::Psd3 solver_;
+  Eigen::Vector3d b_;  ///< b, in the coordinates of solver_
 };
 
 /// solve_viscous_coulomb(robot, frame) from the frame's already built system: the same v_body,

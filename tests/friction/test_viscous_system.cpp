@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -159,6 +161,64 @@ TEST(ViscousSystem, ContactsAtOnePointGiveThePseudoInverse) {
   solve_viscous_coulomb(c.robot, c.frame, system);
   EXPECT_FALSE(c.frame.friction.unique);
   EXPECT_TRUE(c.frame.v_body.allFinite());
+}
+
+// A definite system is solved in body coordinates (the lever scale L is then off the solve's
+// serial path) and judged in the scaled ones: the answer is the scaled system's, to rounding, at
+// every robot size. Oracle: M̃ = D M D and b̃ = D b by hand (D = diag(1, 1, 1/L)), solved by a
+// pivoted LU and scaled back.
+TEST(ViscousSystem, SolvesADefiniteSystemUnscaledToTheScaledSolvesRoundingAtEverySize) {
+  std::mt19937 rng(43);
+  for (bool anisotropic : {false, true}) {
+    for (const double size : {1e-3, 1.0, 1e3}) {
+      for (int trial = 0; trial < 20; ++trial) {
+        Case c = random_case(6, anisotropic, rng);
+        c.frame.q.topRows(2) *= size;
+        c.frame.qdot.topRows(2) *= size;
+        Eigen::Matrix3d M;
+        Eigen::Vector3d b;
+        by_hand(c, M, b);
+        double L = 0.0;
+        for (int k = 1; k < 6; ++k) {  // foot 0 is in the air
+          L = std::max(L, c.frame.q.col(k).head<2>().norm());
+        }
+        const Eigen::DiagonalMatrix<double, 3> D(1.0, 1.0, 1.0 / L);
+        const Eigen::Matrix3d Ms = D * M * D;
+        const Eigen::Vector3d y = Ms.fullPivLu().solve(-(D * b));
+        solve_viscous_coulomb(c.robot, c.frame);
+        ASSERT_TRUE(c.frame.friction.unique);
+        // Compared in the scaled coordinates, where every component is a velocity.
+        const Eigen::Vector3d got = D.inverse() * c.frame.v_body;
+        EXPECT_LE((got - y).norm(), 1e-13 * y.norm()) << size << " m";
+        EXPECT_LT(
+            (ViscousSystem(c.robot, c.frame).inverse() * M - Eigen::Matrix3d::Identity()).norm(),
+            1e-10);
+      }
+    }
+  }
+}
+
+// The rank test is the scaled system's (balance.hpp: contacts closer than ~1e-6 L are one point),
+// whichever coordinates the system is then solved in: two feet 1e-4 L apart fix the rotation and
+// two 1e-9 L apart do not, at every robot size.
+TEST(ViscousSystem, JudgesTheRankInScaledCoordinatesAtEveryRobotSize) {
+  for (const double size : {1e-3, 1.0, 1e3}) {
+    for (const double apart : {1e-4, 1e-9}) {
+      const contact::Robot robot = contact::uniform_robot(2, 100.0, 0.7, 9.81);
+      contact::Frame f(robot);
+      f.q.col(0) << 0.3 * size, 0.1 * size, -0.1;
+      f.q.col(1) << 0.3 * size, (0.1 + 0.3 * apart) * size, -0.1;
+      f.qdot.col(0) << 0.1 * size, -0.05 * size, 0.0;
+      f.qdot.col(1) << 0.02 * size, 0.07 * size, 0.0;
+      for (int k = 0; k < 2; ++k) {
+        f.contact[static_cast<std::size_t>(k)] = 1;
+        f.Fz(k) = 4.9;
+      }
+      solve_viscous_coulomb(robot, f);
+      EXPECT_EQ(f.friction.unique, apart > 1e-6) << size << " m, " << apart << " L apart";
+      EXPECT_TRUE(f.v_body.allFinite());
+    }
+  }
 }
 
 // The isotropic kernels (balance.cpp: the feet as rows, the forces four at a time) against the
