@@ -288,8 +288,8 @@ bool Psd3::ldlt(const Eigen::Matrix3d& M, double pivot_tol, double L2) {
   return true;
 }
 
-bool Psd3::factorize_definite(const Eigen::Matrix3d& M, double pivot_tol) {
-  chol_ = ldlt(M, pivot_tol, 1.0);
+bool Psd3::factorize_definite(const Eigen::Matrix3d& M, double pivot_tol, double L2) {
+  chol_ = ldlt(M, pivot_tol, L2);
   rank_ = chol_ ? 3 : -1;
   return chol_;
 }
@@ -317,14 +317,8 @@ bool Psd3::factorize(const Eigen::Matrix3d& M) {
   return false;
 }
 
-bool Psd3::factorize_unscaled(const Eigen::Matrix3d& M, double L2) {
-  chol_ = ldlt(M, kRankTol, L2);
-  rank_ = chol_ ? 3 : -1;
-  return chol_;
-}
-
 void factorize_system(Psd3& solver, Contacts& cs, Eigen::Matrix3d& M, Eigen::Vector3d& b) {
-  if (cs.unscaled && solver.factorize_unscaled(M, cs.L2)) {
+  if (cs.unscaled && solver.factorize_definite(M, kRankTol, cs.L2)) {
     return;
   }
   if (cs.unscaled) {

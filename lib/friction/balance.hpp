@@ -24,7 +24,7 @@
 // arm ‖q_xy,k‖ of a foot with friction (J̃_k = [I | S q_k / L]): all three unknowns are then
 // velocities, M̃ = D M D (D = diag(1, 1, 1/L)) is well scaled, "least norm" is unit-consistent
 // and one relative rank tolerance serves every robot size. The viscous system is the exception
-// where M̃ is safely definite: the rank test is M̃'s (Psd3::factorize_unscaled, through L² alone),
+// where M̃ is safely definite: the rank test is M̃'s (Psd3::factorize_definite with L², no √),
 // but the LDLᵀ and the solve are M's own, since L comes last in its assembly (a maximum over the
 // feet, a √, a division) and would otherwise stand between the sums and the solve. A diagonal
 // scaling commutes with an unpivoted LDLᵀ, so the two differ by rounding only.
@@ -171,12 +171,9 @@ class Psd3 {
   bool factorize(const Eigen::Matrix3d& M);
   /// Like factorize(), but returns false without any fallback work when a pivot is below
   /// pivot_tol · trace (the caller then uses another matrix); solve() is only valid after a true
-  /// return.
-  bool factorize_definite(const Eigen::Matrix3d& M, double pivot_tol = kRankTol);
-  /// factorize() of M̃ = D M D, D = diag(1, 1, 1/L) (L² = L2 > 0), where M̃ passes the rank test,
-  /// but with M's own factors: solve() and inverse() are then in M's coordinates. Returns false,
-  /// with nothing factorized, where M̃ is not safely definite (the caller then factorizes M̃).
-  bool factorize_unscaled(const Eigen::Matrix3d& M, double L2);
+  /// return. With L2 = L² ≠ 1 the test is that of M̃ = D M D, D = diag(1, 1, 1/L), but the factors
+  /// are M's own: solve() and inverse() are then in M's coordinates (factorize_system()).
+  bool factorize_definite(const Eigen::Matrix3d& M, double pivot_tol = kRankTol, double L2 = 1.0);
   [[nodiscard]] Eigen::Vector3d solve(const Eigen::Vector3d& b) const;
   [[nodiscard]] Eigen::Matrix3d inverse() const;
   [[nodiscard]] int rank() const { return rank_; }
