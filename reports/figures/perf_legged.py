@@ -338,6 +338,9 @@ def read_machine(data: Path) -> tuple[dict | None, str | None]:
     if not (np.isfinite(m["ghz"]) and m["ghz"] > 0):
         return None, (f"{c.shown_path(path)}: no clock measured ("
                       f"{m['message'] or 'a --no-timing run'})")
+    # A virtual CPU's add chain need not run at its clock: cycles counted from it would be wrong.
+    if "clock_plausible" in t.columns and m.get("clock_plausible", 1.0) == 0.0:
+        return None, f"{c.shown_path(path)}: {m['message']}"
     return m, None
 
 

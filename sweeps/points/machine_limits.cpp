@@ -20,6 +20,10 @@
 // __builtin_cpu_supports says the CPU has them; elsewhere, and on any target but x86-64 with
 // GCC or Clang, the columns are NaN and `message` says why. The kind is timed: the runner runs
 // it alone, so no other timed point shares its core.
+// A virtual CPU need not retire one dependent add per cycle of any clock it has (one such VM's
+// chain ran at 21.6 "GHz", another's made an add's latency 10 "cycles"): every per-cycle column
+// is in units of the chain's rate, which `clock_plausible` (0.5-7 GHz, what x86-64 cores run at)
+// and `message` flag. Ratios of two columns do not depend on that unit.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -27,6 +31,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/csv.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/point_reader.hpp"
 #include "sweeps/engine/timing.hpp"
@@ -80,6 +85,7 @@ struct LimitRow {
   double latency_mul = kNaN;
   double latency_div = kNaN;
   double latency_sqrt = kNaN;
+  long long clock_plausible = 0;  ///< the add chain ran at 0.5-7 GHz (a core's clock)
   std::string message;
 
   static std::vector<Column<LimitRow>> columns() {
@@ -98,6 +104,7 @@ struct LimitRow {
             timing("latency_mul_cycles", &R::latency_mul, "cycle"),
             timing("latency_div_cycles", &R::latency_div, "cycle"),
             timing("latency_sqrt_cycles", &R::latency_sqrt, "cycle"),
+            value("clock_plausible", &R::clock_plausible),
             value("message", &R::message)};
   }
 };
@@ -384,6 +391,22 @@ double cycles_per_op(Loop loop, double ops, const LimitInputs& in, double* ghz =
   return median(ratio);
 }
 
+/// The add chain's rate is a core's clock only where it lies where x86-64 cores run; elsewhere
+/// the CPU is virtual or throttled in a way the chain does not see, and the message says that
+/// the per-cycle columns are in units of the chain, not of a clock.
+void flag_clock(LimitRow& row) {
+  constexpr double kLowestGhz = 0.5;
+  constexpr double kHighestGhz = 7.0;
+  row.clock_plausible = row.ghz >= kLowestGhz && row.ghz <= kHighestGhz ? 1 : 0;
+  if (row.clock_plausible == 0) {
+    std::string what = "the integer-add chain ran at " + core::format_double(row.ghz) +
+                       " GHz, outside the 0.5-7 GHz of x86-64 cores: this CPU does not retire "
+                       "one dependent add per clock cycle, so every per-cycle column counts "
+                       "that chain's steps, not cycles";
+    row.message = row.message.empty() ? what : row.message + "; " + what;
+  }
+}
+
 void measure(const LimitInputs& in, LimitRow& row) {
   row.isa = "x86-64";
   __builtin_cpu_init();
@@ -403,6 +426,7 @@ void measure(const LimitInputs& in, LimitRow& row) {
   row.latency_mul = cycles_per_op(mul_latency, kChainOps, in);
   row.latency_div = cycles_per_op(div_latency, kChainOps, in);
   row.latency_sqrt = cycles_per_op(sqrt_add_latency, kChainOps, in) - row.latency_add;
+  flag_clock(row);
 }
 
 #else

@@ -1,13 +1,19 @@
 // The machine-capability point (sweeps/points/machine_limits.cpp): check() rejects bad keys
-// naming them, and on x86-64 one cheap point measures numbers every x86-64 core obeys — a
-// clock of 0.5–7 GHz; at least one flop per cycle scalar; packed SSE2 twice the scalar rate
-// (the same instructions on two lanes: every x86-64 core issues them at the same rate), within
-// the noise of a shared machine; no more flops per cycle than the widest cores issue (4 scalar,
-// 8 SSE2, 16 AVX2 with or without FMA, with a quarter for noise: a rate above that means the
-// compiler merged the accumulator chains and the loop timed fewer operations than it counts);
-// latencies of 1–8 cycles for an add and a multiply, a divide and a square root slower than an
-// add. Elsewhere the columns are NaN with a message. These bound the machine, not our code's
-// speed: no timing of the model is asserted.
+// naming them, and on x86-64 one cheap point measures numbers every x86-64 core obeys whatever
+// its clock. Every per-cycle column is in units of the integer-add chain's rate, and a virtual
+// CPU's chain need not run at its clock (one VM's ran at 21.6 "GHz", another's made an add 10
+// "cycles"), so no column is asserted alone: only ratios of two columns, in which that unit
+// cancels —
+//  * packed SSE2 twice the scalar rate (the same instructions on two lanes: every x86-64 core
+//    issues them at the same rate), within the noise of a shared machine; AVX2 no slower;
+//  * a core's peak scalar rate (12 independent chains, half adds, half multiplies) at least one
+//    dependent add chain's (1 / its latency) and at most twelve chains' (12 / the shorter of
+//    the two latencies, with a quarter for noise: above that the compiler merged the chains and
+//    the loop timed fewer operations than it counts);
+//  * a divide slower than an add;
+// and the flag that says whether the chain's rate is a plausible clock agrees with the clock
+// column and the message. These bound the machine, not our code's speed: no timing of the model
+// is asserted. Elsewhere the columns are NaN with a message.
 // The rates are judged by the best of three runs, column by column: ctest runs this beside other
 // tests, and a neighbour on the core slows a loop's flops (never speeds them), but not the integer
 // clock it is divided by, so a single run can time the scalar loop slowed and the SSE2 loop not
@@ -104,38 +110,39 @@ TEST(MachineLimits, MeasuresNumbersEveryCoreOfItsKindObeys) {
     return out;
   };
   EXPECT_EQ(text(row, "isa"), "x86-64");
-  for (const Cells& r : runs) {  // a neighbour slows the rates: the upper bounds hold in every run
+  for (const Cells& r : runs) {
     const double ghz = num(r, "ghz");
-    EXPECT_GE(ghz, 0.5);
-    EXPECT_LE(ghz, 7.0);
-    EXPECT_LE(num(r, "flops_per_cycle_scalar"), 4.0 * 1.25);
-    EXPECT_LE(num(r, "flops_per_cycle_sse2"), 8.0 * 1.25);
+    ASSERT_TRUE(std::isfinite(ghz) && ghz > 0.0) << ghz;
+    const bool plausible = ghz >= 0.5 && ghz <= 7.0;
+    EXPECT_EQ(num(r, "clock_plausible"), plausible ? 1.0 : 0.0) << ghz;
+    if (!plausible) {
+      EXPECT_NE(text(r, "message").find("GHz"), std::string::npos) << text(r, "message");
+    }
   }
   const double scalar = best("flops_per_cycle_scalar");
   const double sse2 = best("flops_per_cycle_sse2");
-  EXPECT_GE(scalar, 1.0);
   EXPECT_NEAR(sse2 / scalar, 2.0, 0.7)
       << "best of " << kRuns << " runs: SSE2 " << sse2 << ", scalar " << scalar;
   if (num(row, "avx2") != 0.0) {
-    const double avx2 = best("flops_per_cycle_avx2");
-    EXPECT_GE(avx2, 0.7 * sse2);
-    EXPECT_LE(avx2, 16.0 * 1.25);
+    EXPECT_GE(best("flops_per_cycle_avx2"), 0.7 * sse2);
   }
   if (num(row, "avx2") != 0.0 && num(row, "fma") != 0.0) {
-    const double fma = best("flops_per_cycle_avx2_fma");
-    EXPECT_GE(fma, 0.7 * sse2);
-    EXPECT_LE(fma, 16.0 * 1.25);
+    EXPECT_GE(best("flops_per_cycle_avx2_fma"), 0.7 * sse2);
   } else {
     EXPECT_TRUE(std::isnan(num(row, "flops_per_cycle_avx2_fma")));
     EXPECT_FALSE(text(row, "message").empty());
   }
-  const double add = num(row, "latency_add_cycles");
-  for (const char* op : {"latency_add_cycles", "latency_mul_cycles"}) {
-    EXPECT_GE(num(row, op), 1.0 * 0.8) << op;
-    EXPECT_LE(num(row, op), 8.0) << op;
+  // Peak against latency, both in the chain's unit, from the same run.
+  constexpr double kChains = 12.0;
+  for (const Cells& r : runs) {
+    const double add = num(r, "latency_add_cycles");
+    const double mul = num(r, "latency_mul_cycles");
+    ASSERT_TRUE(add > 0.0 && mul > 0.0) << add << " " << mul;
+    EXPECT_LE(num(r, "flops_per_cycle_scalar"), 1.25 * kChains / std::min(add, mul));
+    EXPECT_GT(num(r, "latency_div_cycles"), add);
+    EXPECT_GT(num(r, "latency_sqrt_cycles"), 0.0);
   }
-  EXPECT_GT(num(row, "latency_div_cycles"), add);
-  EXPECT_GT(num(row, "latency_sqrt_cycles"), 1.0);
+  EXPECT_GE(scalar * num(row, "latency_add_cycles"), 0.8);
 #else
   EXPECT_EQ(text(row, "isa"), "portable");
   EXPECT_TRUE(std::isnan(num(row, "ghz")));
