@@ -24,4 +24,12 @@ class ComputationError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A computation stopped at a budget its caller set (a step, stroke or iteration cap): the
+/// method did not misbehave; it was given less work than the answer needs. A study that sweeps
+/// into such a cap records the point with its status instead of counting a failure.
+class BudgetExhausted : public ComputationError {
+ public:
+  using ComputationError::ComputationError;
+};
+
 }  // namespace slipwalk::core

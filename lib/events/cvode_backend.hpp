@@ -108,7 +108,7 @@ class CvodeBackend {
       ++taken;
       if (options_.max_steps > 0 && stats_.steps + taken > options_.max_steps) {
         finish_segment();
-        throw core::ComputationError(step_budget_message(kName, options_.max_steps));
+        throw core::BudgetExhausted(step_budget_message(kName, options_.max_steps));
       }
       const State<N> y_hi = Eigen::Map<const State<N>>(returned_state());
       const State<N> dy_hi = Eigen::Map<const State<N>>(interpolate(t_hi, 1));

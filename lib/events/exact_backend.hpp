@@ -37,7 +37,7 @@ class ExactBackend {
   SegmentEnd advance(const ModeFlow<N, G>& flow, double t0, State<N>& x, double t_end,
                      Observer&& observe = {}) {
     if (max_steps_ > 0 && stats_.steps >= max_steps_) {
-      throw core::ComputationError(step_budget_message(kName, max_steps_));
+      throw core::BudgetExhausted(step_budget_message(kName, max_steps_));
     }
     ++stats_.segments;
     double tau_min = t_end - t0;

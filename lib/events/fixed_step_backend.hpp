@@ -20,11 +20,12 @@
 //  - The last step of a segment is shortened to land on t_end.
 //  - A non-finite state ends the run (core::ComputationError) at the step that produced it.
 //  - BackendOptions::max_steps (> 0) caps the steps over the backend's life: a run that would
-//    take more throws core::ComputationError (a budget, so that a study can ask for tiny steps
-//    without running for hours; the failure is recorded, not hidden).
+//    take more throws core::BudgetExhausted (a budget, so that a study can ask for tiny steps
+//    without running for hours; the stop is recorded, not hidden).
 // Nothing is allocated.
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/error.hpp"
@@ -67,9 +68,11 @@ class FixedStepBackend {
         t = t_end;
       }
       if (options_.max_steps > 0 && stats_.steps >= options_.max_steps) {
-        throw core::ComputationError("fixed_rk4: step budget of " +
-                                     std::to_string(options_.max_steps) +
-                                     " steps (h = " + std::to_string(h) + " s) used up");
+        std::array<char, 32> step{};
+        (void)std::snprintf(step.data(), step.size(), "%.3g", h);
+        throw core::BudgetExhausted("fixed_rk4: step budget of " +
+                                    std::to_string(options_.max_steps) + " steps (h = " +
+                                    step.data() + " s) used up");
       }
       rk4_step(flow, x, dx, t - t_prev);
       ++stats_.steps;

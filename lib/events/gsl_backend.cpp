@@ -91,7 +91,7 @@ void GslBackend::start_segment(int n_state, const double* x0) {
 
 void GslBackend::step(double& t, double t_end) {
   if (options_.max_steps > 0 && stats_.steps >= options_.max_steps) {
-    throw core::ComputationError(step_budget_message(kName, options_.max_steps));
+    throw core::BudgetExhausted(step_budget_message(kName, options_.max_steps));
   }
   std::copy(y_.begin(), y_.end(), y_start_.begin());
   const double t_before = t;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/error.hpp"
 #include "events/hybrid_system.hpp"
 
 namespace slipwalk::events {
@@ -15,6 +16,7 @@ enum class RunStatus {
   kTimeLimit,        ///< t reached t_end
   kEventLimit,       ///< too many events: a Zeno sequence or a run far longer than planned
   kBackendFailure,   ///< the backend could not integrate (message in RunSummary::message)
+  kStepBudget,       ///< the backend's step budget ran out (core::BudgetExhausted; message)
 };
 
 struct RunLimits {
@@ -60,6 +62,10 @@ RunSummary run_hybrid(const System& system, Backend& backend, double& t,
     SegmentEnd end;
     try {
       end = backend.advance(flow, t, x, limits.t_end, observe_step);
+    } catch (const core::BudgetExhausted& e) {
+      summary.status = RunStatus::kStepBudget;
+      summary.message = e.what();
+      return summary;
     } catch (const std::exception& e) {
       summary.status = RunStatus::kBackendFailure;
       summary.message = e.what();

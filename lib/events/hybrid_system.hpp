@@ -65,7 +65,7 @@ struct BackendOptions {
   double atol = 1e-12;     ///< absolute tolerance of the ODE steps
   double event_tol = 0.0;  ///< s, time tolerance of guard location; 0 = 4ε·max(1, |t|)
   double step = 0.0;       ///< s, the step of FixedStepBackend (> 0 there; others ignore it)
-  /// Every backend: fail (core::ComputationError, "step budget ... used up") once it has taken
+  /// Every backend: fail (core::BudgetExhausted, "step budget ... used up") once it has taken
   /// this many accepted steps in all (the exact backend counts segments); 0 = no limit. A
   /// counter compare per step: what keeps a run whose step count the input sets (a tiny fixed
   /// step, a guard a fixed step misses) from running without end.

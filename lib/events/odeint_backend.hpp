@@ -266,7 +266,7 @@ class OdeintBackend {
         throw core::ComputationError(std::string("odeint: ") + e.what());
       }
       if (options_.max_steps > 0 && stats_.steps >= options_.max_steps) {
-        throw core::ComputationError(step_budget_message(kName, options_.max_steps));
+        throw core::BudgetExhausted(step_budget_message(kName, options_.max_steps));
       }
       ++stats_.steps;
       const Array<N>& y_hi = steps.y_hi;

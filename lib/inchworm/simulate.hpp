@@ -37,6 +37,13 @@ enum class Estimator {
   kRunningMean,   ///< the average over the whole run from rest ("over a long simulation", §2.2.2)
 };
 
+/// The budget that ended a solve that did not converge (none for every other end).
+enum class Budget {
+  kNone,     ///< converged, or stopped for another reason (a failure)
+  kSteps,    ///< the backend's step budget (events::BackendOptions::max_steps) ran out
+  kStrokes,  ///< no convergence within SimulationOptions::max_strokes strokes
+};
+
 struct SimulationOptions {
   double target = 1e-12;              ///< stop threshold (relative), see StopRule
   long long max_strokes = 4'000'000;  ///< give up (converged = false) after this many strokes
@@ -47,6 +54,9 @@ struct SimulationOptions {
 
 struct SimulationSummary {
   bool converged = false;
+  /// Which budget ended a run that did not converge: the backend's steps (BackendOptions::
+  /// max_steps, core::BudgetExhausted) or SimulationOptions::max_strokes; kNone otherwise.
+  Budget budget = Budget::kNone;
   std::string message;           ///< why it stopped
   double v_ss = 0.0;             ///< the last cycle average (eq. 2.5)
   double period = 0.0;           ///< mean stroke duration of the last cycle
@@ -101,6 +111,9 @@ HalfCycleRecord simulate_half_cycle(const System& sys, Backend& backend,
     rec.flags |= sys.mode_flags(ev.mode_after);
     return true;
   });
+  if (!ended && summary.status == events::RunStatus::kStepBudget) {
+    throw core::BudgetExhausted("half cycle did not end: " + summary.message);
+  }
   if (!ended) {
     throw core::ComputationError("half cycle did not end: " + summary.message);
   }
@@ -186,10 +199,16 @@ SimulationSummary steady_state_by_simulation(const System& sys, Backend& backend
       }
     }
     if (!out.converged) {
+      out.budget = Budget::kStrokes;
       out.message = "no convergence within " + std::to_string(opt.max_strokes) + " strokes";
     }
+  } catch (const core::BudgetExhausted& e) {
+    out.converged = false;
+    out.budget = Budget::kSteps;
+    out.message = e.what();
   } catch (const std::exception& e) {
     out.converged = false;
+    out.budget = Budget::kNone;
     out.message = e.what();
   }
   if (record_cycles) {

@@ -63,6 +63,7 @@ VssResult simulate(const Params& p, Method method, const VssOptions& opt, Backen
   VssResult r;
   r.method = method;
   r.converged = s.converged;
+  r.budget = s.budget;
   r.message = s.message;
   r.v_ss = s.v_ss;
   r.period = s.period;
@@ -202,9 +203,15 @@ VssResult solve_vss(const Params& p, Method method, const VssOptions& opt) {
                            [&](auto& backend) { r = simulate(p, method, opt, backend); });
         break;
     }
+  } catch (const core::BudgetExhausted& e) {
+    r.method = method;
+    r.converged = false;
+    r.budget = Budget::kSteps;
+    r.message = e.what();
   } catch (const std::exception& e) {
     r.method = method;
     r.converged = false;
+    r.budget = Budget::kNone;
     r.message = e.what();
   }
   refuse_non_finite(method, r);

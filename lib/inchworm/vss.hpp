@@ -57,6 +57,7 @@ struct VssOptions {
 struct VssResult {
   Method method = Method::kExact;
   bool converged = true;
+  Budget budget = Budget::kNone;  ///< not converged: the budget that ended it, if one did
   std::string message;
   double v_ss = 0.0;    ///< m/s
   double period = 0.0;  ///< s, one stroke

@@ -1,5 +1,5 @@
-// slipwalk sweep SPEC.toml [--jobs N] [--resume] [--quick] [--data DIR] [--shard k/n] [--mpi]
-// slipwalk sweep merge SPEC.toml [--quick] [--data DIR] [--shards N] [--keep-shards]
+// slipwalk sweep SPEC.toml [--jobs N] [--resume] [--quick|--full] [--data DIR] [--shard k/n]
+// [--mpi] slipwalk sweep merge SPEC.toml [--quick|--full] [--data DIR] [--shards N] [--keep-shards]
 // Under an MPI launcher (mpirun -np R slipwalk sweep ...) the points go over the ranks
 // (sweeps/engine/mpi/mpi_run.hpp); see sweeps/README.md.
 #include <array>
@@ -22,6 +22,11 @@ namespace slipwalk::cli {
 
 namespace {
 
+/// "N at their budget, " where points stopped at a budget their spec expects; "" when none.
+std::string budget_text(long long at_budget) {
+  return at_budget > 0 ? std::to_string(at_budget) + " at their budget, " : std::string();
+}
+
 using core::InputError;
 
 std::string default_data() { return std::string(SLIPWALK_SOURCE_DIR) + "/data"; }
@@ -31,6 +36,7 @@ struct SweepCommand {
   int jobs = 0;
   bool resume = false;
   bool quick = false;
+  bool full = false;
   bool no_timing = false;
   std::string data = default_data();
   std::string shard;
@@ -74,7 +80,8 @@ struct SweepCommand {
   }
 
   [[nodiscard]] sweeps::PreparedSweep prepare() const {
-    return sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
+    return sweeps::prepare(sweeps::load_spec(spec, sweeps::variant_of(quick, full)),
+                           sweeps::points::all_kinds());
   }
 
   /// Everything is checked before anything is written, the destination included.
@@ -89,7 +96,7 @@ struct SweepCommand {
   static void print(const sweeps::RunSummary& s) {
     if (s.complete) {
       std::cout << s.csv.string() << ": " << s.points << " points (" << s.failed << " failed, "
-                << s.resumed << " resumed) in " << s.wall_s << " s on ";
+                << budget_text(s.at_budget) << s.resumed << " resumed) in " << s.wall_s << " s on ";
       if (s.ranks > 1) {
         std::cout << s.ranks << " ranks\n";
       } else {
@@ -162,6 +169,7 @@ struct SweepCommand {
 struct MergeCommand {
   std::string spec;
   bool quick = false;
+  bool full = false;
   std::string data = default_data();
   long long shards = 0;
   bool keep_shards = false;
@@ -171,8 +179,8 @@ struct MergeCommand {
       throw InputError("--shards", "must be from 1 to 1000000, got " + std::to_string(shards));
     }
     core::check_output_dir(data, "--data");
-    const sweeps::PreparedSweep sweep =
-        sweeps::prepare(sweeps::load_spec(spec, quick), sweeps::points::all_kinds());
+    const sweeps::PreparedSweep sweep = sweeps::prepare(
+        sweeps::load_spec(spec, sweeps::variant_of(quick, full)), sweeps::points::all_kinds());
     const std::array<std::filesystem::path, 1> inputs{spec};
     const sweeps::SweepFiles files = sweeps::sweep_files(sweep.spec, data);
     core::check_output_path(files.csv, "--data (output " + files.csv.string() + ")", inputs, true);
@@ -183,8 +191,9 @@ struct MergeCommand {
       options.shards = shards;
     }
     const sweeps::MergeSummary s = sweeps::merge_shards(sweep, options);
-    std::cout << s.csv.string() << ": " << s.points << " points (" << s.failed
-              << " failed) merged from " << s.shards << " shards\n";
+    std::cout << s.csv.string() << ": " << s.points << " points (" << s.failed << " failed"
+              << (s.at_budget > 0 ? ", " + std::to_string(s.at_budget) + " at their budget" : "")
+              << ") merged from " << s.shards << " shards\n";
   }
 };
 
@@ -205,7 +214,10 @@ void add_sweep_command(CLI::App& app) {
       "--resume", cmd->resume,
       "keep the points finished in <name>.partial.csv by an interrupted run (by any number of "
       "threads or ranks)"));
-  sub->add_flag("--quick", cmd->quick, "apply the spec's [quick] overrides (smoke runs)");
+  auto* quick =
+      sub->add_flag("--quick", cmd->quick, "apply the spec's [quick] overrides (smoke runs)");
+  sub->add_flag("--full", cmd->full, "apply the spec's [full] overrides (the study's long version)")
+      ->excludes(quick);
   sub->add_option("--data", cmd->data, "data folder (default <source>/data)");
   own.push_back(sub->add_flag("--no-timing", cmd->no_timing,
                               "write wall_s as 0, so that reruns give byte-identical files"));
@@ -234,7 +246,8 @@ void add_sweep_command(CLI::App& app) {
       "join the shards <name>.shard-k-of-n.csv of a spec into <name>.csv, the file a single run "
       "writes (the shard files are removed unless --keep-shards)");
   mrg->add_option("SPEC", merge->spec, "the sweep spec the shards ran")->required();
-  mrg->add_flag("--quick", merge->quick, "the shards ran with --quick");
+  auto* merge_quick = mrg->add_flag("--quick", merge->quick, "the shards ran with --quick");
+  mrg->add_flag("--full", merge->full, "the shards ran with --full")->excludes(merge_quick);
   mrg->add_option("--data", merge->data, "data folder (default <source>/data)");
   mrg->add_option("--shards", merge->shards,
                   "the shard count n (default: the one count found in the data folder)");
@@ -246,7 +259,7 @@ void add_sweep_command(CLI::App& app) {
         throw InputError(o->get_name(), "is an option of `slipwalk sweep`, not of `sweep merge`");
       }
     }
-    for (const char* name : {"--quick", "--data"}) {
+    for (const char* name : {"--quick", "--full", "--data"}) {
       if (sub->get_option(name)->count() > 0) {
         throw InputError(name, "give it after `merge`: `slipwalk sweep merge SPEC " +
                                    std::string(name) + " ...`");

@@ -78,10 +78,10 @@ std::mutex& timed_points_mutex() {
 
 std::string timing_line(bool timing) { return std::string("#timing,") + (timing ? "1" : "0"); }
 
-// A point's end mark in a checkpoint, "#done,<id>,<failed: 0 or 1>,<message>": the id, the flag
-// and where the message starts. False for a malformed line (std::from_chars: no sign, no blanks,
-// an overflow fails), which then marks nothing finished.
-bool parse_done(const std::string& line, long long& id, bool& failed, std::size_t& message) {
+// A point's end mark in a checkpoint, "#done,<id>,<outcome>,<message>" (outcome 0 done, 1 failed,
+// 2 at its budget): the id, the outcome and where the message starts. False for a malformed line
+// (std::from_chars: no sign, no blanks, an overflow fails), which then marks nothing finished.
+bool parse_done(const std::string& line, long long& id, int& outcome, std::size_t& message) {
   const char* const begin = line.data();
   const char* const end = begin + line.size();
   constexpr std::size_t kTag = 6;  // "#done,"
@@ -95,10 +95,10 @@ bool parse_done(const std::string& line, long long& id, bool& failed, std::size_
   int flag = -1;
   const auto parsed_flag = std::from_chars(parsed_id.ptr + 1, end, flag);
   if (parsed_flag.ec != std::errc() || parsed_flag.ptr == end || *parsed_flag.ptr != ',' ||
-      (flag != 0 && flag != 1)) {
+      flag < 0 || flag > 2) {
     return false;
   }
-  failed = flag == 1;
+  outcome = flag;
   message = static_cast<std::size_t>(parsed_flag.ptr + 1 - begin);
   return true;
 }
@@ -141,9 +141,9 @@ FinishedPoints read_partial(const std::filesystem::path& path, const std::string
       continue;
     }
     long long id = -1;
-    bool failed = false;
+    int outcome = 0;
     std::size_t consumed = 0;
-    if (parse_done(line, id, failed, consumed) && id >= 0 && id < n_points) {
+    if (parse_done(line, id, outcome, consumed) && id >= 0 && id < n_points) {
       // Every row of the point must carry its id.
       const std::string prefix = std::to_string(id) + ",";
       bool ok = true;
@@ -151,7 +151,7 @@ FinishedPoints read_partial(const std::filesystem::path& path, const std::string
         ok = ok && rows.compare(p, prefix.size(), prefix) == 0;
       }
       if (ok) {
-        done[id] = Finished{rows, failed, line.substr(consumed)};
+        done[id] = Finished{rows, outcome == 1, outcome == 2, line.substr(consumed)};
       }
     }
     rows.clear();
@@ -161,7 +161,8 @@ FinishedPoints read_partial(const std::filesystem::path& path, const std::string
 
 void append_point(std::string& out, long long id, const Finished& f) {
   out += f.rows;
-  out += "#done," + std::to_string(id) + "," + (f.failed ? "1" : "0") + "," + f.message + "\n";
+  const char* outcome = f.failed ? "1" : (f.at_budget ? "2" : "0");
+  out += "#done," + std::to_string(id) + "," + outcome + "," + f.message + "\n";
 }
 
 }  // namespace
@@ -238,7 +239,8 @@ std::string fingerprint(const PreparedSweep& s) {
   return buffer;
 }
 
-Finished compute_point(const PointKind& kind, const Point& point, bool timing) {
+Finished compute_point(const PreparedSweep& sweep, const Point& point, bool timing) {
+  const PointKind& kind = *sweep.kind;
   const auto start = std::chrono::steady_clock::now();
   PointResult r;
   if (kind.timed == Timed::kYes) {
@@ -249,7 +251,9 @@ Finished compute_point(const PointKind& kind, const Point& point, bool timing) {
   }
   Finished f;
   f.rows = format_rows(r, kind.columns, timing);
-  f.failed = r.failed;
+  const bool expected_stop = r.at_budget && sweep.spec.budget_stops_expected;
+  f.failed = r.failed || (r.at_budget && !expected_stop);
+  f.at_budget = expected_stop && !r.failed;
   f.message = one_line(r.message);
   f.seconds = seconds_since(start);
   return f;
@@ -331,11 +335,12 @@ nlohmann::json result_sidecar(const PreparedSweep& sweep, const Shard& shard,
                               const FinishedPoints& points, bool timing) {
   const Spec& spec = sweep.spec;
   nlohmann::json failed = nlohmann::json::array();
-  long long failed_count = 0;
+  nlohmann::json at_budget = nlohmann::json::array();
   for (const auto& [id, f] : points) {
     if (f.failed) {
-      ++failed_count;
       failed.push_back({{"id", id}, {"message", f.message}});
+    } else if (f.at_budget) {
+      at_budget.push_back({{"id", id}, {"message", f.message}});
     }
   }
   nlohmann::json listed = nlohmann::json::array();
@@ -352,11 +357,14 @@ nlohmann::json result_sidecar(const PreparedSweep& sweep, const Shard& shard,
       {"description", spec.description},
       {"spec_file", spec.path},
       {"quick", spec.quick},
+      {"variant", variant_name(spec.variant)},
       {"spec", spec.source},
       {"columns", sweep.kind->column_names()},
       {"point_count", listed.size()},
-      {"failed_point_count", failed_count},
+      {"failed_point_count", failed.size()},
       {"failed_points", failed},
+      {"budget_point_count", at_budget.size()},
+      {"budget_points", at_budget},
       {"timing", timing},
       {"date", utc_now()},
       {"provenance", core::build_provenance()},

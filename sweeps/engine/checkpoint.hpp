@@ -6,10 +6,10 @@
 //
 // The checkpoint `<stem>.partial.csv`: the CSV header, `#spec,<fingerprint>`, `#timing,<0|1>`
 // (whether timing columns hold times: a resume keeps the setting), then per finished point its
-// rows and a `#done,<id>,<failed>,<message>` line. A point counts only once its #done
-// line is complete, so a run killed in the middle of a write loses at most that point. The
-// format does not depend on who wrote it: a threaded run resumes an MPI run's checkpoint and
-// the other way round.
+// rows and a `#done,<id>,<outcome>,<message>` line (0 done, 1 failed, 2 at its budget). A point
+// counts only once its #done line is complete, so a run killed in the middle of a write loses at
+// most that point. The format does not depend on who wrote it: a threaded run resumes an MPI run's
+// checkpoint and the other way round.
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
@@ -70,17 +70,19 @@ struct SweepFiles {
 struct Finished {
   std::string rows;  ///< CSV text, one line per row, each starting with the point's id
   bool failed = false;
-  std::string message;   ///< one line
-  double seconds = 0.0;  ///< wall time of its computation (this run only; not in any file)
+  bool at_budget = false;  ///< stopped at a budget its spec sets (PointResult::at_budget)
+  std::string message;     ///< one line
+  double seconds = 0.0;    ///< wall time of its computation (this run only; not in any file)
 };
 
 /// The finished points of a run, by id.
 using FinishedPoints = std::map<long long, Finished>;
 
-/// Computes one point: its rows as CSV text (timing columns written as 0 unless `timing`), its
-/// outcome and its wall time. A point of a timed kind holds the process-wide timed-point lock
-/// while it runs (point_kind.hpp). Throws what the kind throws.
-[[nodiscard]] Finished compute_point(const PointKind& kind, const Point& point, bool timing);
+/// Computes one point of `sweep`: its rows as CSV text (timing columns written as 0 unless
+/// `timing`), its outcome (a stop at a budget is a failure unless the spec expects it) and its
+/// wall time. A point of a timed kind holds the process-wide timed-point lock while it runs
+/// (point_kind.hpp). Throws what the kind throws.
+[[nodiscard]] Finished compute_point(const PreparedSweep& sweep, const Point& point, bool timing);
 
 /// The checkpoint of a run in progress: opened fresh or resumed, then appended to.
 class Checkpoint {

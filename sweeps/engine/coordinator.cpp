@@ -167,6 +167,7 @@ RunSummary Coordinator::finish(const nlohmann::json& extra) {
   const FinishedPoints& done = checkpoint_.done();
   for (const auto& [id, f] : done) {
     summary.failed += f.failed ? 1 : 0;
+    summary.at_budget += f.at_budget ? 1 : 0;
   }
   if (!error_.empty()) {
     checkpoint_.discard_if_empty();
@@ -199,7 +200,7 @@ void compute_on_threads(Coordinator& coordinator, const PreparedSweep& sweep, un
     while (const auto index = coordinator.take()) {
       std::vector<std::pair<std::size_t, Finished>> finished(1);
       try {
-        finished[0] = {*index, compute_point(*sweep.kind, sweep.points[*index], timing)};
+        finished[0] = {*index, compute_point(sweep, sweep.points[*index], timing)};
       } catch (const std::exception& e) {
         coordinator.fail(*index, e.what());
         return;

@@ -53,7 +53,17 @@ fs::path csv_of(const JobContext& context, const Study& study, const std::string
 /// A summary for a job kept from an earlier run.
 JobSummary kept(std::string study, std::string name, const char* kind, fs::path csv,
                 long long points, long long failed) {
-  return {std::move(study), std::move(name), kind, std::move(csv), points, failed, points, 0.0, {}};
+  return {std::move(study),
+          std::move(name),
+          kind,
+          std::move(csv),
+          points,
+          failed,
+          points,
+          0.0,
+          {},
+          {},
+          0};
 }
 
 /// The sidecar of a study entry's finished output when it was written for the same entry (its
@@ -103,17 +113,21 @@ JobSummary run_kind(const SweepRun& run, const JobContext& context) {
     }
     if (!side.is_null() && side.value("kind", "") == sweep.spec.kind &&
         side.value("quick", !sweep.spec.quick) == sweep.spec.quick &&
+        side.value("variant", std::string()) == variant_name(sweep.spec.variant) &&
         side.value("columns", nlohmann::json()) == nlohmann::json(sweep.kind->column_names()) &&
         side.value("points", nlohmann::json()) == points) {
-      return kept(sweep.spec.study, sweep.spec.name, "sweep", csv,
-                  static_cast<long long>(sweep.points.size()),
-                  side.value("failed_point_count", 0LL));
+      JobSummary k =
+          kept(sweep.spec.study, sweep.spec.name, "sweep", csv,
+               static_cast<long long>(sweep.points.size()), side.value("failed_point_count", 0LL));
+      k.point_kind = sweep.spec.kind;
+      k.at_budget = side.value("budget_point_count", 0LL);
+      return k;
     }
   }
   const auto start = Clock::now();
   const RunSummary s = sweeps::run(sweep, context.sweep);
-  return {sweep.spec.study, sweep.spec.name,      "sweep", s.csv, s.points, s.failed,
-          s.resumed,        seconds_since(start), {}};
+  return {sweep.spec.study, sweep.spec.name,      "sweep", s.csv,           s.points,   s.failed,
+          s.resumed,        seconds_since(start), {},      sweep.spec.kind, s.at_budget};
 }
 
 }  // namespace
@@ -121,8 +135,11 @@ JobSummary run_kind(const SweepRun& run, const JobContext& context) {
 std::string JobSummary::line() const {
   std::string out = "  " + kind + " " + name;
   if (kind == "sweep") {
-    out += ": " + std::to_string(points) + " points (" + std::to_string(failed) + " failed, " +
-           std::to_string(resumed) + " resumed)";
+    out += ": " + std::to_string(points) + " points (" + std::to_string(failed) + " failed, ";
+    if (at_budget > 0) {
+      out += std::to_string(at_budget) + " at their budget, ";
+    }
+    out += std::to_string(resumed) + " resumed)";
   }
   return out + " -> " + csv.string() + " (" + seconds_text(seconds) + ")";
 }
@@ -166,7 +183,7 @@ JobSummary write_trace_job(const Study& study, const TraceJob& job, const fs::pa
       {"provenance", core::build_provenance()},
   };
   core::write_file_atomically(sidecar_of(csv), sidecar.dump(1) + "\n");
-  return {study.id, job.name, "trace", csv, 1, 0, 0, seconds_since(start), {}};
+  return {study.id, job.name, "trace", csv, 1, 0, 0, seconds_since(start), {}, {}, 0};
 }
 
 JobSummary write_scene_job(const Study& study, const SceneJob& job, const fs::path& data_dir,
@@ -182,7 +199,7 @@ JobSummary write_scene_job(const Study& study, const SceneJob& job, const fs::pa
       {"date", utc_now()},
   };
   const scene::RunResult result = scene::write_run(sc, sim, csv, extra, nullptr);
-  JobSummary summary{study.id, job.name, "scene", csv, 1, 0, 0, 0.0, {}};
+  JobSummary summary{study.id, job.name, "scene", csv, 1, 0, 0, 0.0, {}, {}, 0};
   const connection::TrajectorySummary& s = result.summary;
   if (!s.message.empty()) {
     summary.warning = study.id + "/" + job.name + ": " + std::to_string(s.unsupported) +

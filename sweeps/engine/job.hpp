@@ -22,9 +22,12 @@ struct JobSummary {
   long long resumed = 0;      ///< points kept from an earlier run instead of computed
   double seconds = 0.0;       ///< wall time of this run of the job
   std::string warning;        ///< empty, or what went wrong short of failing (a scene's bad frames)
+  std::string point_kind;     ///< sweep: the spec's point kind; empty for traces and scenes
+  long long at_budget = 0;    ///< sweep: points that stopped at a budget the spec sets (not failed)
 
   /// The job's line in the log of `slipwalk reproduce`, e.g.
-  /// `  sweep fig2_3: 320 points (0 failed, 0 resumed) -> data/ch2/fig2_3.csv (1.2 s)`.
+  /// `  sweep fig2_3: 320 points (0 failed, 0 resumed) -> data/ch2/fig2_3.csv (1.2 s)`, with
+  /// `, 19 at their budget` after the failures where there are any.
   [[nodiscard]] std::string line() const;
 };
 

@@ -24,8 +24,12 @@
 // spec file:line:col and the key; the runner checks every point before it runs any, so a bad
 // spec writes nothing) and a run that returns the point's rows. A run never throws for numerical
 // trouble: the rows say what happened and `failed` marks the point, which is counted in the
-// sidecar and does not stop the sweep. A kind that measures time is `timed`: the runner runs its
-// points one at a time, process-wide, so no two timed points share the machine's cores.
+// sidecar and does not stop the sweep. A point that stops at a budget (a step, stroke or
+// iteration cap) is marked `at_budget`, its rows saying where it stopped (a status column); the
+// spec says whether that is a failure (the default) or a designed outcome of its study
+// (`budget_stops = "expected"`, Spec::budget_stops_expected), counted apart from the failures. A
+// kind that measures time is `timed`: the runner runs its points one at a time, process-wide, so no
+// two timed points share the machine's cores.
 #include <array>
 #include <cstddef>
 #include <functional>
@@ -107,15 +111,17 @@ struct ColumnInfo {
 template <class Row>
 struct Rows {
   std::vector<Row> rows;
-  bool failed = false;
-  std::string message;  ///< why it failed (empty otherwise)
+  bool failed = false;     ///< something went wrong that should not have (a failure)
+  bool at_budget = false;  ///< not failed: it stopped at a budget (a step or iteration cap)
+  std::string message;     ///< why it failed or which budget it reached (empty otherwise)
 };
 
 /// A point's rows as cells, in the order of the kind's columns.
 struct PointResult {
   std::vector<Cells> rows;
-  bool failed = false;
-  std::string message;  ///< why it failed (empty otherwise)
+  bool failed = false;     ///< something went wrong that should not have (a failure)
+  bool at_budget = false;  ///< not failed: it stopped at a budget (a step or iteration cap)
+  std::string message;     ///< why it failed or which budget it reached (empty otherwise)
 };
 
 /// Whether a kind's points measure time (and so run one at a time, process-wide).
@@ -175,6 +181,7 @@ template <class Row>
       out.rows.push_back(cells_of(row, *table));
     }
     out.failed = r.failed;
+    out.at_budget = r.at_budget && !r.failed;
     out.message = std::move(r.message);
     return out;
   };

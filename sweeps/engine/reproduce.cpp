@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>  // environ
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -62,11 +63,29 @@ std::vector<LoadedStudy> load_studies(const ReproduceOptions& options) {
   for (const auto& dir : dirs) {
     LoadedStudy l{load_study(dir), {}};
     for (const auto& spec : l.study.sweeps) {
-      l.sweeps.push_back(prepare(load_spec(spec, options.quick), options.kinds));
+      l.sweeps.push_back(
+          prepare(load_spec(spec, variant_of(options.quick, options.full)), options.kinds));
     }
     loaded.push_back(std::move(l));
   }
   return loaded;
+}
+
+/// Every sweep named by --expect-failures is one of the studies' sweeps.
+void check_expected_failures(const ReproduceOptions& options,
+                             const std::vector<LoadedStudy>& loaded) {
+  for (const std::string& name : options.expected_failures) {
+    bool found = false;
+    for (const auto& l : loaded) {
+      for (const auto& sweep : l.sweeps) {
+        found = found || sweep.spec.study + "/" + sweep.spec.name == name;
+      }
+    }
+    if (!found) {
+      throw core::InputError("--expect-failures",
+                             "no sweep '" + name + "' (study/name) among the studies run");
+    }
+  }
 }
 
 /// Stage 2: a study's jobs, in the order they run: traces, scene runs, sweeps.
@@ -126,6 +145,9 @@ void build_report(const ReproduceOptions& options, ReproduceSummary& summary) {
 }  // namespace
 
 std::optional<core::InputError> ReproduceOptions::validate() const {
+  if (quick && full) {
+    return core::InputError("--full", "cannot be combined with --quick (one size per run)");
+  }
   if (jobs < 0 || jobs > 4096) {
     return core::InputError(
         "--jobs", "must be from 1 to 4096 (0: one per core), got " + std::to_string(jobs));
@@ -160,6 +182,28 @@ long long ReproduceSummary::failed_points() const {
   return n;
 }
 
+namespace {
+std::string sweep_id(const JobSummary& j) { return j.study + "/" + j.name; }
+}  // namespace
+
+long long ReproduceSummary::unexpected_failed_points() const {
+  long long n = 0;
+  for (const auto& j : jobs) {
+    const bool expected = std::find(expected_failures.begin(), expected_failures.end(),
+                                    sweep_id(j)) != expected_failures.end();
+    n += j.kind == "sweep" && !expected ? j.failed : 0;
+  }
+  return n;
+}
+
+long long ReproduceSummary::budget_points() const {
+  long long n = 0;
+  for (const auto& j : jobs) {
+    n += j.kind == "sweep" ? j.at_budget : 0;
+  }
+  return n;
+}
+
 long long ReproduceSummary::resumed_points() const {
   long long n = 0;
   for (const auto& j : jobs) {
@@ -177,8 +221,34 @@ long long ReproduceSummary::points() const {
 }
 
 std::string ReproduceSummary::brief_report() const {
-  return "reproduce: done in " + seconds_text(seconds) + "; " + std::to_string(failed_points()) +
-         " sweep points failed (recorded in the sidecars)";
+  std::string out = "reproduce: done in " + seconds_text(seconds) + "; " +
+                    std::to_string(failed_points()) + " sweep points failed";
+  if (const long long budget = budget_points(); budget > 0) {
+    out += ", " + std::to_string(budget) + " stopped at a budget their study sets";
+  }
+  return out + " (recorded in the sidecars)";
+}
+
+std::string ReproduceSummary::failures_report() const {
+  std::string out;
+  std::string held;  // expected failures that did not happen
+  for (const auto& j : jobs) {
+    if (j.kind != "sweep") {
+      continue;
+    }
+    const bool expected = std::find(expected_failures.begin(), expected_failures.end(),
+                                    sweep_id(j)) != expected_failures.end();
+    if (j.failed > 0) {
+      out += "  " + sweep_id(j) + " (kind " + j.point_kind + "): " + std::to_string(j.failed) +
+             " of " + std::to_string(j.points) + " points failed" +
+             (expected ? ", expected (--expect-failures)" : "") + " (" +
+             fs::path(j.csv).replace_extension(".json").string() + ": failed_points)\n";
+    } else if (expected) {
+      held += "reproduce: " + sweep_id(j) +
+              " was expected to fail (--expect-failures) and did not: drop it from the list\n";
+    }
+  }
+  return (out.empty() ? out : "reproduce: failed points, by study and kind:\n" + out) + held;
 }
 
 ReproduceSummary reproduce(const ReproduceOptions& options) {
@@ -188,6 +258,7 @@ ReproduceSummary reproduce(const ReproduceOptions& options) {
   }
   // Everything is read and checked before anything is written.
   const std::vector<LoadedStudy> loaded = load_studies(options);
+  check_expected_failures(options, loaded);
 
   JobContext context;
   context.sweep.data_dir = options.data_dir;
@@ -198,11 +269,13 @@ ReproduceSummary reproduce(const ReproduceOptions& options) {
   context.keep_finished = options.resume && options.keep_finished;
 
   ReproduceSummary summary;
+  summary.expected_failures = options.expected_failures;
   for (const auto& l : loaded) {
     summary.studies.push_back({l.study.id, l.study.title});
     if (options.log != nullptr) {
       *options.log << "== " << l.study.id << ": " << l.study.title
-                   << (options.quick ? " (quick)" : "") << std::endl;
+                   << (options.quick ? " (quick)" : "") << (options.full ? " (full)" : "")
+                   << std::endl;
     }
     for (const Job& job : jobs_of(l)) {
       summary.jobs.push_back(run_job(job, context));

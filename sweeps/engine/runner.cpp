@@ -39,16 +39,21 @@ PreparedSweep prepare(Spec spec, std::span<const PointKind> kinds) {
   for (const Point& p : s.points) {
     s.kind->check(p);
   }
-  // The variant not run is checked as well: a bad value is bad input whether or not --quick
-  // overrides it, and a bad [quick] value is found by a full run too.
-  for (const Point& p : expand_other(spec)) {
-    try {
-      s.kind->check(p);
-    } catch (const core::InputError& e) {
-      std::string what = e.what();
-      what.erase(0, std::min(what.size(), e.where().size() + 2));
-      what.append(spec.quick ? " (in the spec without --quick)" : " (in the spec under --quick)");
-      throw core::InputError(e.where(), what);
+  // The sizes not run are checked as well: a bad value is bad input whether or not --quick or
+  // --full overrides it, and a bad [quick] or [full] value is found by every run.
+  for (const OtherVariant& other : spec.others) {
+    for (const Point& p : expand_other(spec, other)) {
+      try {
+        s.kind->check(p);
+      } catch (const core::InputError& e) {
+        std::string what = e.what();
+        what.erase(0, std::min(what.size(), e.where().size() + 2));
+        what.append(other.variant == Variant::kDefault
+                        ? " (in the spec without --" + std::string(variant_name(spec.variant)) + ")"
+                        : " (in the spec under --" + std::string(variant_name(other.variant)) +
+                              ")");
+        throw core::InputError(e.where(), what);
+      }
     }
   }
   s.spec = std::move(spec);

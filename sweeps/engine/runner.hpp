@@ -39,6 +39,7 @@ struct RunSummary {
   long long resumed = 0;          ///< taken from the checkpoint
   long long computed = 0;         ///< in this run
   long long failed = 0;           ///< points whose solve failed (all runs)
+  long long at_budget = 0;        ///< points that stopped at a budget the spec sets (all runs)
   bool complete = false;          ///< false when max_points stopped the run
   unsigned jobs = 1;              ///< threads (per rank)
   unsigned ranks = 1;             ///< MPI ranks

@@ -141,7 +141,9 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
     if (!side.is_object() || side.value("fingerprint", "") != print ||
         side.value("shard", json()) != json{{"index", k}, {"count", n}}) {
       throw core::InputError(where, "not shard " + shard.text() + " of this spec (" + spec.path +
-                                        (spec.quick ? ", --quick" : "") +
+                                        (spec.variant == Variant::kDefault
+                                             ? std::string()
+                                             : std::string(", --") + variant_name(spec.variant)) +
                                         "): its points differ; rerun that shard");
     }
     const std::string shard_commit =
@@ -160,7 +162,8 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
                                         " timings, shard 1 the other way; rerun it with"
                                         " --no-timing set alike");
     }
-    // The shard's points, failed ones with their messages, then their rows.
+    // The shard's points, failed ones and those at their budget with their messages, then
+    // their rows.
     const std::vector<char> member = shard_members(sweep.points.size(), shard);
     for (const Point& p : sweep.points) {
       if (member[static_cast<std::size_t>(p.id)] != 0) {
@@ -176,6 +179,17 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
       }
       done[id].failed = true;
       done[id].message = failed.value("message", std::string());
+    }
+    for (const json& stopped : side.value("budget_points", json::array())) {
+      const long long id = stopped.value("id", -1LL);
+      if (id < 0 || id >= static_cast<long long>(member.size()) ||
+          member[static_cast<std::size_t>(id)] == 0 || done[id].failed) {
+        throw core::InputError(where, "budget_points names point " + std::to_string(id) +
+                                          ", which is not in shard " + shard.text() +
+                                          " or is also a failed point");
+      }
+      done[id].at_budget = true;
+      done[id].message = stopped.value("message", std::string());
     }
     read_rows(f.csv, header, shard, member, done);
     resumed += side.value("resumed_point_count", 0LL);
@@ -223,6 +237,7 @@ MergeSummary merge_shards(const PreparedSweep& sweep, const MergeOptions& option
   summary.sidecar = out.sidecar;
   summary.points = static_cast<long long>(done.size());
   summary.failed = sidecar.value("failed_point_count", 0LL);
+  summary.at_budget = sidecar.value("budget_point_count", 0LL);
   summary.shards = n;
   return summary;
 }

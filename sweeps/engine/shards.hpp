@@ -22,6 +22,7 @@ struct MergeSummary {
   std::filesystem::path sidecar;
   long long points = 0;
   long long failed = 0;
+  long long at_budget = 0;
   long long shards = 0;
 };
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
@@ -262,22 +263,25 @@ void check_file_name(const std::string& value, const char* key, const toml::node
   }
 }
 
-void apply_quick(Spec& spec, const toml::node& node, const std::string& path, int top_block) {
+/// Applies an override section ([quick] or [full], named `section`) to `spec`.
+void apply_overrides(Spec& spec, const toml::node& node, const std::string& section,
+                     const std::string& path, int top_block) {
   const auto* t = node.as_table();
   if (t == nullptr) {
-    throw InputError(origin_of(node.source(), path), "quick: expected a table");
+    throw InputError(origin_of(node.source(), path), section + ": expected a table");
   }
   for (auto&& [k, v] : *t) {
     if (k == "params") {
-      for (const auto& named : parse_named(v, "quick.params", path)) {
+      for (const auto& named : parse_named(v, section + ".params", path)) {
         const auto& key = named.first;  // a plain reference: lambdas may not capture bindings
         const auto& value = named.second;
         for (const Block& b : spec.blocks) {
           const bool in_points = std::any_of(b.points.begin(), b.points.end(),
                                              [&](const auto& p) { return has_key(p, key); });
           if (find_axis(b, key) != nullptr || in_points) {
-            throw InputError(value.origin, "quick.params." + key +
-                                               ": an axis or point key; override it in quick.axes");
+            throw InputError(value.origin, section + ".params." + key +
+                                               ": an axis or point key; override it in " + section +
+                                               ".axes");
           }
         }
         put(spec.params, key, value);
@@ -299,21 +303,21 @@ void apply_quick(Spec& spec, const toml::node& node, const std::string& path, in
           }
         }
         if (!replaced) {
-          throw InputError(axis.origin,
-                           "quick.axes." + axis.key + ": the spec has no axis '" + axis.key + "'");
+          throw InputError(axis.origin, section + ".axes." + axis.key + ": the spec has no axis '" +
+                                            axis.key + "'");
         }
       }
     } else if (k == "points") {
       if (top_block < 0) {
         throw InputError(origin_of(v.source(), path),
-                         "quick.points: the spec has no top-level [axes] or [[points]]");
+                         section + ".points: the spec has no top-level [axes] or [[points]]");
       }
       spec.blocks[static_cast<std::size_t>(top_block)].points = parse_points(v, path);
       check_block(spec.blocks[static_cast<std::size_t>(top_block)]);
     } else {
       throw InputError(origin_of(k.source(), path),
-                       "unknown key 'quick." + std::string(k.str()) +
-                           "'; expected quick.params, quick.axes, quick.points");
+                       "unknown key '" + section + "." + std::string(k.str()) + "'; expected " +
+                           section + ".params, " + section + ".axes, " + section + ".points");
     }
   }
 }
@@ -447,11 +451,22 @@ std::vector<double> logspace(double a, double b, long long n) {
   return out;
 }
 
-Spec parse_spec(std::string_view text, const std::string& path, bool quick) {
+const char* variant_name(Variant v) {
+  switch (v) {
+    case Variant::kQuick:
+      return "quick";
+    case Variant::kFull:
+      return "full";
+    case Variant::kDefault:
+      break;
+  }
+  return "default";
+}
+
+Spec parse_spec(std::string_view text, const std::string& path, Variant variant) {
   const toml::table doc = core::parse_toml(text, path);
   Spec spec;
   spec.path = path;
-  spec.quick = quick;
   spec.source = toml_to_json(doc);
   spec.study = text_key(doc, "study", path, true);
   check_file_name(spec.study, "study", *doc.get("study"), path);
@@ -459,18 +474,30 @@ Spec parse_spec(std::string_view text, const std::string& path, bool quick) {
   check_file_name(spec.name, "name", *doc.get("name"), path);
   spec.kind = text_key(doc, "kind", path, true, &spec.kind_origin);
   spec.description = text_key(doc, "description", path, false);
+  if (doc.contains("budget_stops")) {
+    const std::string stops = text_key(doc, "budget_stops", path, true);
+    if (stops != "expected" && stops != "failures") {
+      throw InputError(
+          origin_of(doc.get("budget_stops")->source(), path),
+          "budget_stops: expected \"expected\" or \"failures\", got \"" + stops + "\"");
+    }
+    spec.budget_stops_expected = stops == "expected";
+  }
 
   int top_block = -1;
   const toml::node* quick_node = nullptr;
+  const toml::node* full_node = nullptr;
   for (auto&& [k, v] : doc) {
     if (k == "study" || k == "name" || k == "kind" || k == "description" || k == "axes" ||
-        k == "points") {
+        k == "points" || k == "budget_stops") {
       continue;
     }
     if (k == "params") {
       spec.params = parse_named(v, "params", path);
     } else if (k == "quick") {
       quick_node = &v;
+    } else if (k == "full") {
+      full_node = &v;
     } else if (k == "block") {
       const auto* blocks = v.as_array();
       if (blocks == nullptr || !blocks->is_array_of_tables()) {
@@ -482,8 +509,8 @@ Spec parse_spec(std::string_view text, const std::string& path, bool quick) {
     } else {
       throw InputError(origin_of(k.source(), path),
                        "unknown key '" + std::string(k.str()) +
-                           "'; expected study, name, kind, description, params, axes, points, "
-                           "block, quick");
+                           "'; expected study, name, kind, description, budget_stops, params, "
+                           "axes, points, block, quick, full");
     }
   }
   // The top-level axes/points form the first block; a spec with neither and no [[block]] has
@@ -492,29 +519,44 @@ Spec parse_spec(std::string_view text, const std::string& path, bool quick) {
     spec.blocks.insert(spec.blocks.begin(), parse_block(doc, path, true));
     top_block = 0;
   }
-  if (quick_node != nullptr) {
-    // Both variants are kept: the one run, and the other for prepare() to check (a bad [quick]
-    // section is an error in full runs too, and a bad value --quick overrides in quick runs).
-    Spec with_quick = spec;
-    apply_quick(with_quick, *quick_node, path, top_block);
-    Spec& run = quick ? with_quick : spec;
-    const Spec& other = quick ? spec : with_quick;
-    run.other_params = other.params;
-    run.other_blocks = other.blocks;
-    if (quick) {
-      spec = std::move(with_quick);
+  // Every size is kept: the one run, and the others for prepare() to check (a bad [quick] or
+  // [full] section is an error in every run, and so is a bad value an override replaces).
+  std::vector<Spec> sizes;
+  sizes.push_back(spec);
+  sizes.back().variant = Variant::kDefault;
+  for (const auto& [section, node, v] : {std::tuple{"quick", quick_node, Variant::kQuick},
+                                         std::tuple{"full", full_node, Variant::kFull}}) {
+    if (node != nullptr) {
+      sizes.push_back(spec);
+      sizes.back().variant = v;
+      apply_overrides(sizes.back(), *node, section, path, top_block);
     }
   }
-  if (point_count(spec) > kMaxPoints || blocks_size(spec.other_blocks) > kMaxPoints) {
-    throw InputError(path, "the spec expands to more than " + std::to_string(kMaxPoints) +
-                               " points" +
-                               (point_count(spec) > kMaxPoints ? "" : " without --quick"));
+  std::size_t run = 0;  // a spec without the variant's section runs its default
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    run = sizes[i].variant == variant ? i : run;
   }
-  return spec;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    if (point_count(sizes[i]) > kMaxPoints) {
+      throw InputError(
+          path, "the spec expands to more than " + std::to_string(kMaxPoints) + " points" +
+                    (i == 0 ? "" : std::string(" under [") + variant_name(sizes[i].variant) + "]"));
+    }
+  }
+  Spec out = std::move(sizes[run]);
+  out.variant = variant;
+  out.quick = variant == Variant::kQuick;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    if (i != run) {
+      out.others.push_back(
+          {sizes[i].variant, std::move(sizes[i].params), std::move(sizes[i].blocks)});
+    }
+  }
+  return out;
 }
 
-Spec load_spec(const std::filesystem::path& path, bool quick) {
-  return parse_spec(core::read_input_file(path, "a sweep spec"), path.string(), quick);
+Spec load_spec(const std::filesystem::path& path, Variant variant) {
+  return parse_spec(core::read_input_file(path, "a sweep spec"), path.string(), variant);
 }
 
 std::size_t point_count(const Spec& spec) { return blocks_size(spec.blocks); }
@@ -523,11 +565,8 @@ std::vector<Point> expand(const Spec& spec) {
   return expand_blocks(spec.params, spec.blocks, spec.path);
 }
 
-std::vector<Point> expand_other(const Spec& spec) {
-  if (spec.other_blocks.empty()) {
-    return {};
-  }
-  return expand_blocks(spec.other_params, spec.other_blocks, spec.path);
+std::vector<Point> expand_other(const Spec& spec, const OtherVariant& other) {
+  return expand_blocks(other.params, other.blocks, spec.path);
 }
 
 }  // namespace slipwalk::sweeps

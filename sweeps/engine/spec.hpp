@@ -58,6 +58,25 @@ struct Block {
   [[nodiscard]] std::size_t size() const;
 };
 
+/// Which size of a spec runs: its own values (the default: what the study's claims need), its
+/// [quick] overrides (a smoke run, `--quick`) or its [full] overrides (the study's long version,
+/// `--full`). Both override sections have one grammar (sweeps/README.md).
+enum class Variant { kDefault, kQuick, kFull };
+/// "default", "quick", "full": the sidecar's `variant`.
+[[nodiscard]] const char* variant_name(Variant v);
+/// The variant two command-line flags select (--quick wins; the front ends refuse both).
+[[nodiscard]] inline Variant variant_of(bool quick, bool full) {
+  return quick ? Variant::kQuick : (full ? Variant::kFull : Variant::kDefault);
+}
+
+/// A size of the spec that is not run, kept for prepare() to check (a bad value is bad input
+/// whichever size runs).
+struct OtherVariant {
+  Variant variant = Variant::kDefault;
+  NamedValues params;
+  std::vector<Block> blocks;
+};
+
 struct Spec {
   std::string path;  ///< the file as named by the user (error messages use it)
   std::string study;
@@ -65,33 +84,42 @@ struct Spec {
   std::string kind;
   std::string kind_origin;
   std::string description;
-  bool quick = false;     ///< [quick] overrides applied
-  nlohmann::json source;  ///< the whole file as JSON (before quick overrides)
-  NamedValues params;     ///< [params] (quick.params applied)
+  Variant variant = Variant::kDefault;  ///< the size run (its overrides applied)
+  /// `budget_stops = "expected"`: a point that stops at a budget (PointResult::at_budget) is a
+  /// designed outcome of this study, counted apart; "failures" (the default): it is a failure.
+  bool budget_stops_expected = false;
+  bool quick = false;     ///< variant == Variant::kQuick
+  nlohmann::json source;  ///< the whole file as JSON (before any overrides)
+  NamedValues params;     ///< [params] (the variant's params applied)
   std::vector<Block> blocks;
-  /// The variant of the spec that is not run: with `quick`, the spec without its [quick]
-  /// overrides; without, the spec with them (empty blocks when the spec has no [quick]).
-  /// prepare() checks its points too, so that a bad value is refused before anything runs
-  /// whichever variant is run, including a value that --quick overrides.
-  NamedValues other_params;
-  std::vector<Block> other_blocks;
+  /// The sizes of the spec that are not run: the default's and each override section's but the
+  /// one run. prepare() checks their points too, so that a bad value is refused before anything
+  /// runs whichever size is run, including a value that --quick or --full overrides.
+  std::vector<OtherVariant> others;
 };
 
 /// Largest number of points a spec may expand to.
 inline constexpr std::size_t kMaxPoints = 10'000'000;
 
-/// Reads and parses a spec file. Throws core::InputError (`file:line:col`) for a malformed file,
-/// an unknown key, a bad axis or a quick override that names no axis.
-[[nodiscard]] Spec load_spec(const std::filesystem::path& path, bool quick = false);
+/// Reads and parses a spec file, its `variant` applied. Throws core::InputError (`file:line:col`)
+/// for a malformed file, an unknown key, a bad axis or an override that names no axis. A spec
+/// without the variant's section runs its default values.
+[[nodiscard]] Spec load_spec(const std::filesystem::path& path, Variant variant);
+[[nodiscard]] inline Spec load_spec(const std::filesystem::path& path, bool quick = false) {
+  return load_spec(path, quick ? Variant::kQuick : Variant::kDefault);
+}
 /// The same from text; `path` labels the errors.
-[[nodiscard]] Spec parse_spec(std::string_view text, const std::string& path, bool quick = false);
+[[nodiscard]] Spec parse_spec(std::string_view text, const std::string& path, Variant variant);
+[[nodiscard]] inline Spec parse_spec(std::string_view text, const std::string& path,
+                                     bool quick = false) {
+  return parse_spec(text, path, quick ? Variant::kQuick : Variant::kDefault);
+}
 
 [[nodiscard]] std::size_t point_count(const Spec& spec);
 /// Every point in product order, ids 0, 1, 2, ...
 [[nodiscard]] std::vector<Point> expand(const Spec& spec);
-/// The points of the variant not run (Spec::other_blocks), in product order; none without
-/// [quick].
-[[nodiscard]] std::vector<Point> expand_other(const Spec& spec);
+/// The points of a size not run (one of Spec::others), in product order.
+[[nodiscard]] std::vector<Point> expand_other(const Spec& spec, const OtherVariant& other);
 
 /// Axis helpers (exact endpoints): n values from a to b, evenly / geometrically spaced.
 [[nodiscard]] std::vector<double> linspace(double a, double b, long long n);

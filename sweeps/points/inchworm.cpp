@@ -321,6 +321,7 @@ struct VssRow {
   double event_tol = 0.0;
   double h = 0.0;
   std::string event_times;
+  std::string status;  ///< "converged", "step budget", "stroke budget" or "failed"
 
   static std::vector<Column<VssRow>> columns() {
     return {value("id", &VssRow::id),
@@ -355,9 +356,28 @@ struct VssRow {
             value("target", &VssRow::target),
             value("event_tol", &VssRow::event_tol, "s"),
             value("h", &VssRow::h, "s"),
-            value("event_times", &VssRow::event_times)};
+            value("event_times", &VssRow::event_times),
+            value("status", &VssRow::status)};
   }
 };
+
+/// A row's status: "converged", the budget that stopped a solve ("step budget": `max_steps`,
+/// "stroke budget": `max_strokes`) or "failed". Whether a budget stop is a failure is the spec's
+/// to say (`budget_stops`, sweeps/README.md).
+std::string vss_status(const inchworm::VssResult& s) {
+  if (s.converged) {
+    return "converged";
+  }
+  switch (s.budget) {
+    case inchworm::Budget::kSteps:
+      return "step budget";
+    case inchworm::Budget::kStrokes:
+      return "stroke budget";
+    case inchworm::Budget::kNone:
+      break;
+  }
+  return "failed";
+}
 
 Rows<VssRow> run_vss(const Point& point) {
   const auto [in, repeats] = read_vss(point);
@@ -417,10 +437,12 @@ Rows<VssRow> run_vss(const Point& point) {
   row.event_tol = in.opt.event_tol;
   row.h = in.method == Method::kFixedRk4 ? inchworm::backend_options(in.opt).step : nan;
   row.event_times = in.opt.exact_event_times ? "exact" : "located";
+  row.status = vss_status(s);
   Rows<VssRow> out;
+  out.failed = !s.converged && s.budget == inchworm::Budget::kNone;
+  out.at_budget = !s.converged && s.budget != inchworm::Budget::kNone;
   out.rows.push_back(std::move(row));
-  out.failed = !s.converged;
-  if (out.failed) {
+  if (!s.converged) {
     out.message = s.message;
   }
   return out;

@@ -89,7 +89,7 @@ TYPED_TEST(RunBounds, EveryBackendStopsAtItsStepBudgetAndSaysWhich) {
   int mode = 0;
   const RunSummary s =
       run_hybrid(sys, backend, t, mode, x, RunLimits{}, [](const auto&) { return true; });
-  EXPECT_EQ(s.status, RunStatus::kBackendFailure) << TypeParam::kName;
+  EXPECT_EQ(s.status, RunStatus::kStepBudget) << TypeParam::kName;
   EXPECT_NE(s.message.find("step budget of 50 steps"), std::string::npos) << s.message;
   EXPECT_LE(backend.stats().steps, 51) << TypeParam::kName;
 }

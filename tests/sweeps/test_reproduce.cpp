@@ -1,6 +1,7 @@
 // The study pipeline called as a library (sweeps/engine/reproduce.hpp): a small study with a
 // trace, a scene run and a sweep; every job's CSV and sidecar, the summary's counts against the
-// files, input errors before any file is written, and a second call that keeps every result.
+// files, the failed points listed by study and kind (known ones and expected budget stops apart),
+// input errors before any file is written, and a second call that keeps every result.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -122,6 +123,50 @@ TEST(Reproduce, RunsEveryJobAndCountsItsPoints) {
             s.brief_report().find(';'));
 }
 
+TEST(Reproduce, ListsTheFailedPointsByStudyAndKindAndKnownOnesApart) {
+  const ScratchDir d;
+  write_tiny_study(d / "studies");
+  const ReproduceSummary s = reproduce(options_for(d));
+  const JobSummary& sweep = s.jobs[2];
+  ASSERT_GT(sweep.failed, 0);
+  EXPECT_EQ(sweep.point_kind, "inchworm_vss");
+  EXPECT_EQ(s.unexpected_failed_points(), sweep.failed);
+  EXPECT_EQ(s.budget_points(), 0);
+  const std::string report = s.failures_report();
+  EXPECT_EQ(report.rfind("reproduce: failed points, by study and kind:\n", 0), 0U) << report;
+  EXPECT_NE(report.find("  tiny/vss (kind inchworm_vss): " + std::to_string(sweep.failed) +
+                        " of 6 points failed ("),
+            std::string::npos)
+      << report;
+  EXPECT_EQ(report.find("expected"), std::string::npos) << report;
+
+  // Named as a known failure: still counted and listed, marked, but not unexpected.
+  ReproduceOptions known = options_for(d);
+  known.expected_failures = {"tiny/vss"};
+  const ReproduceSummary k = reproduce(known);
+  EXPECT_EQ(k.failed_points(), sweep.failed);
+  EXPECT_EQ(k.unexpected_failed_points(), 0);
+  EXPECT_NE(k.failures_report().find("points failed, expected (--expect-failures)"),
+            std::string::npos)
+      << k.failures_report();
+
+  // A study whose budget stops are expected: no failure, the stops counted apart, and an expected
+  // failure that did not happen is said.
+  const fs::path spec = d / "studies" / "tiny" / "vss.toml";
+  write_text(spec, "budget_stops = \"expected\"\n" + read_text(spec));
+  const ReproduceSummary b = reproduce(known);
+  EXPECT_EQ(b.failed_points(), 0);
+  EXPECT_EQ(b.budget_points(), sweep.failed);
+  EXPECT_NE(b.brief_report().find(", " + std::to_string(sweep.failed) +
+                                  " stopped at a budget their study sets"),
+            std::string::npos)
+      << b.brief_report();
+  EXPECT_NE(b.failures_report().find("tiny/vss was expected to fail (--expect-failures) and did "
+                                     "not"),
+            std::string::npos)
+      << b.failures_report();
+}
+
 TEST(Reproduce, ASecondCallKeepingFinishedJobsRecomputesNothing) {
   const ScratchDir d;
   write_tiny_study(d / "studies");
@@ -200,6 +245,15 @@ TEST(Reproduce, BadOptionsAndStudiesThrowBeforeAnythingIsWritten) {
   ReproduceOptions no_kinds = options_for(d);
   no_kinds.kinds = {};
   expect_input_error_and_no_data(no_kinds, "kinds", d);
+
+  ReproduceOptions both = options_for(d);
+  both.quick = true;
+  both.full = true;
+  expect_input_error_and_no_data(both, "--full", d);
+
+  ReproduceOptions unknown_failure = options_for(d);
+  unknown_failure.expected_failures = {"tiny/nonesuch"};
+  expect_input_error_and_no_data(unknown_failure, "--expect-failures", d);
 
   EXPECT_FALSE(options_for(d).validate().has_value());
 

@@ -177,8 +177,8 @@ TEST(Runner, InterruptedThenResumedIsByteIdentical) {
 }
 
 TEST(Runner, CorruptEndMarksInACheckpointResumeTheirPointsAsUnfinished) {
-  // A point counts as finished only under a well-formed `#done,<id>,<0|1>,<message>` line: an
-  // overflowing or signed id, another flag or a missing comma is read as no mark, so its rows are
+  // A point counts as finished only under a well-formed `#done,<id>,<0|1|2>,<message>` line: an
+  // overflowing or signed id, another outcome or a missing comma is read as no mark, so its rows are
   // dropped and the point is run again (never a clamped or wrapped id).
   const PreparedSweep sweep = prepared();
   const ScratchDir full;
@@ -191,7 +191,7 @@ TEST(Runner, CorruptEndMarksInACheckpointResumeTheirPointsAsUnfinished) {
   std::string text = read_text(first.partial);
   const std::vector<std::function<std::string(const std::string&)>> spoil = {
       [](const std::string& id) { return "#done,99999999999999999999" + id + ",0,"; },
-      [](const std::string& id) { return "#done," + id + ",2,"; },
+      [](const std::string& id) { return "#done," + id + ",3,"; },
       [](const std::string& id) { return "#done,+" + id + ",0,"; },
       [](const std::string& id) { return "#done," + id + ",0"; },
   };
@@ -313,6 +313,56 @@ max_strokes = [8, 100000]
   const auto j = nlohmann::json::parse(read_text(s.sidecar));
   EXPECT_EQ(j.at("failed_point_count"), 1);
   EXPECT_EQ(j.at("failed_points")[0].at("id"), 0);
+}
+
+TEST(Runner, AStopAtABudgetTheSpecExpectsIsCountedApartAndSurvivesAResume) {
+  const std::string text = R"(study = "test"
+name = "budget"
+kind = "inchworm_vss"
+budget_stops = "expected"
+[params]
+F = 73.575
+mu = 0.05
+method = "analytic"
+[axes]
+max_strokes = [8, 100000, 8]
+)";
+  const PreparedSweep sweep = prepared(text);
+  const ScratchDir d;
+  const RunSummary s = run(sweep, options(d.path(), 2));
+  EXPECT_EQ(s.failed, 0);
+  EXPECT_EQ(s.at_budget, 2);
+  const std::string csv = read_text(s.csv);
+  EXPECT_NE(csv.find(",stroke budget\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",converged\n"), std::string::npos) << csv;
+  const auto j = nlohmann::json::parse(read_text(s.sidecar));
+  EXPECT_EQ(j.at("failed_point_count"), 0);
+  EXPECT_EQ(j.at("budget_point_count"), 2);
+  EXPECT_EQ(j.at("budget_points")[1].at("id"), 2);
+  EXPECT_NE(j.at("budget_points")[0].at("message").get<std::string>().find("8 strokes"),
+            std::string::npos);
+
+  // Interrupted after one point, then resumed: the checkpoint keeps the outcome.
+  const ScratchDir r;
+  RunOptions o = options(r.path(), 1);
+  o.max_points = 1;
+  (void)run(sweep, o);
+  o.resume = true;
+  o.max_points = -1;
+  const RunSummary resumed = run(sweep, o);
+  EXPECT_EQ(resumed.resumed, 1);
+  EXPECT_EQ(resumed.at_budget, 2);
+  EXPECT_EQ(read_text(resumed.csv), csv);
+
+  // The same points without budget_stops are failures, with the same rows.
+  std::string as_failures = text;
+  as_failures.erase(as_failures.find("budget_stops"),
+                    std::string("budget_stops = \"expected\"\n").size());
+  const ScratchDir f;
+  const RunSummary failed = run(prepared(as_failures), options(f.path(), 2));
+  EXPECT_EQ(failed.failed, 2);
+  EXPECT_EQ(failed.at_budget, 0);
+  EXPECT_EQ(read_text(failed.csv), csv);
 }
 
 /// A kind whose run throws (a bug in a kind, or a limit reached), for the runner's failure path.
@@ -512,6 +562,44 @@ dt = 0.01
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(files_under(data), (std::vector<std::string>{"demo/grid.csv", "demo/grid.json",
                                                          "demo/trace.csv", "demo/trace.json"}));
+  // A failed point: everything written, the failure listed, exit 1; named as a known failure, 0.
+  const auto failing = study / "failing.toml";
+  write_text(failing, R"(study = "demo"
+name = "failing"
+kind = "inchworm_vss"
+[params]
+F = 73.575
+mu = 0.05
+method = "analytic"
+max_strokes = 8
+)");
+  write_text(study / "study.toml", "title = \"demo\"\nsweeps = [\"failing.toml\"]\n");
+  args = base;
+  args.push_back("demo");
+  const auto fails = run_slipwalk(args);
+  EXPECT_EQ(fails.exit_code, 1) << fails.err;
+  EXPECT_NE(fails.out.find("  demo/failing (kind inchworm_vss): 1 of 1 points failed"),
+            std::string::npos)
+      << fails.out;
+  EXPECT_NE(fails.err.find("slipwalk: error: 1 sweep points failed"), std::string::npos)
+      << fails.err;
+  EXPECT_TRUE(std::filesystem::exists(data / "demo" / "failing.csv"));
+  args.insert(args.end(), {"--expect-failures", "demo/failing"});
+  const auto known = run_slipwalk(args);
+  EXPECT_EQ(known.exit_code, 0) << known.err;
+  EXPECT_NE(known.out.find("1 of 1 points failed, expected"), std::string::npos) << known.out;
+  write_text(study / "study.toml", R"(title = "demo"
+sweeps = ["grid.toml"]
+[[trace]]
+name = "trace"
+F = 45.0
+mu = 1.0
+cycles = 2
+dt = 0.01
+)");
+  std::filesystem::remove(failing);
+  std::filesystem::remove_all(data);
+
   // An unknown study, a bad study file: exit 2 and nothing new written.
   args = base;
   args.push_back("nope");

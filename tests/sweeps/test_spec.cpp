@@ -1,5 +1,5 @@
-// Sweep specs: axis expansion, product order and ids, [[points]] and [[block]], quick overrides,
-// and bad specs rejected with file:line:col before anything runs.
+// Sweep specs: axis expansion, product order and ids, [[points]] and [[block]], the [quick] and
+// [full] sizes, budget_stops, and bad specs rejected with file:line:col before anything runs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -174,6 +174,84 @@ params.rtol = 1e-6
   EXPECT_EQ(num(quick[0], "rtol"), 1e-6);
   EXPECT_EQ(num(full[0], "rtol"), 1e-10);
   EXPECT_TRUE(parse(body, true).quick);
+}
+
+TEST(Spec, FullOverridesAreTheLongVariantAndEachSizeRunsOnlyItsOwn) {
+  const std::string body = R"(
+[params]
+rtol = 1e-10
+repeats = 1
+[axes]
+mu = [1.0, 0.2]
+F_frac = { linspace = [0.005, 1.0], n = 8 }
+[quick]
+axes.F_frac = [0.5]
+[full]
+axes.F_frac = { linspace = [0.005, 1.0], n = 80 }
+params.repeats = 5
+)";
+  const std::string path = "spec.toml";
+  const Spec def = parse_spec(kHead + body, path, Variant::kDefault);
+  const Spec quick = parse_spec(kHead + body, path, Variant::kQuick);
+  const Spec full = parse_spec(kHead + body, path, Variant::kFull);
+  EXPECT_EQ(expand(def).size(), 16U);
+  EXPECT_EQ(expand(quick).size(), 2U);
+  ASSERT_EQ(expand(full).size(), 160U);
+  EXPECT_EQ(num(expand(full)[0], "repeats"), 5.0);
+  EXPECT_EQ(num(expand(def)[0], "repeats"), 1.0);
+  EXPECT_EQ(num(expand(quick)[0], "repeats"), 1.0);  // [full] does not leak into --quick
+  EXPECT_EQ(full.variant, Variant::kFull);
+  EXPECT_FALSE(full.quick);
+  EXPECT_TRUE(quick.quick);
+  // The two sizes not run are kept for prepare() to check.
+  ASSERT_EQ(full.others.size(), 2U);
+  EXPECT_EQ(full.others[0].variant, Variant::kDefault);
+  EXPECT_EQ(full.others[1].variant, Variant::kQuick);
+  EXPECT_EQ(expand_other(full, full.others[0]).size(), 16U);
+  EXPECT_STREQ(variant_name(Variant::kFull), "full");
+  // Without a [full] section --full runs the default values.
+  EXPECT_EQ(
+      expand(parse_spec(kHead + "[axes]\nmu = [1.0, 0.2]\nF = [45.0]\n", path, Variant::kFull))
+          .size(),
+      2U);
+}
+
+TEST(Spec, ABadValueInAnySizeIsRefusedWhicheverSizeRuns) {
+  // A value only [full] sets, out of range: refused by a default and a quick run too, and
+  // the message says where it would have run.
+  const std::string body = R"(
+[params]
+F = 45.0
+mu = 1.0
+[full]
+params.rtol = 5.0
+)";
+  for (const Variant v : {Variant::kDefault, Variant::kQuick, Variant::kFull}) {
+    const std::string msg =
+        message_of([&] { (void)points::prepare(parse_spec(kHead + body, "spec.toml", v)); });
+    EXPECT_NE(msg.find("spec.toml:9:"), std::string::npos) << variant_name(v) << ": " << msg;
+    EXPECT_NE(msg.find("rtol"), std::string::npos) << msg;
+    if (v != Variant::kFull) {
+      EXPECT_NE(msg.find("under --full"), std::string::npos) << msg;
+    }
+  }
+  EXPECT_NE(
+      message_of([&] { (void)parse(std::string(body) + "nonesuch = 1\n"); }).find("full.nonesuch"),
+      std::string::npos);
+  EXPECT_EQ(where_of([&] {
+              (void)parse("[params]\nF = 45.0\n[full]\naxes.mu = [1.0]\n");
+            }).rfind("spec.toml:7:", 0),
+            0U);
+}
+
+TEST(Spec, BudgetStopsAreFailuresUnlessTheSpecExpectsThem) {
+  EXPECT_FALSE(parse("[params]\nF = 45.0\n").budget_stops_expected);
+  EXPECT_TRUE(parse("budget_stops = \"expected\"\n[params]\nF = 45.0\n").budget_stops_expected);
+  EXPECT_FALSE(parse("budget_stops = \"failures\"\n[params]\nF = 45.0\n").budget_stops_expected);
+  EXPECT_EQ(where_of([&] {
+              (void)parse("budget_stops = \"maybe\"\n[params]\nF = 45.0\n");
+            }).rfind("spec.toml:4:", 0),
+            0U);
 }
 
 TEST(Spec, QuickPointsReplaceThePoints) {

@@ -392,7 +392,7 @@ class Worker {
       Entry e;
       e.index = index;
       try {
-        e.finished = compute_point(*sweep_.kind, sweep_.points[index], timing_);
+        e.finished = compute_point(sweep_, sweep_.points[index], timing_);
         e.status = e.finished.failed ? Status::kFailed : Status::kOk;
       } catch (const std::exception& error) {
         e.status = Status::kThrew;
