@@ -144,6 +144,7 @@ def main():
         conv = cal.flag(r["converged"])
         cost = r["cost"][conv]
         v[f"starts_{sv}_count"] = r.n
+        v[f"starts_{sv}_iterations_max"] = int(np.max(r["iterations"]))
         v[f"starts_{sv}_converged_fraction"] = float(np.mean(conv))
         v[f"starts_{sv}_seconds_median"] = float(np.median(r["seconds"]))
         v[f"starts_{sv}_rotation_error_deg_max"] = float(np.max(r["rotation_error_deg"][conv])) \

@@ -3,7 +3,9 @@
 
 Input: DATA/ch5_planning/replay.csv (kind plan_replay: per goal -- straight, turn, diagonal --,
 plan length `steps` and MuJoCo variant `label`, one row per planning step time with the plan's
-pose x, y, theta and MuJoCo's x_mujoco, y_mujoco, theta_mujoco, and the run's gaps on every row).
+pose x, y, theta and MuJoCo's x_mujoco, y_mujoco, theta_mujoco, and the run's gaps on every row)
+and, optional, DATA/ch5_planning/replay_coulomb.csv (the same kind: the turn planned with
+Coulomb friction, label "coulomb", set beside replay.csv's stiff turn of its own length).
 Output: OUT/plan_replay.png, OUT/values/plan_replay.json.
 
 Panels: (top) per goal the body paths in the plane, the plan (black) against MuJoCo with ยง3.5.4's
@@ -11,8 +13,8 @@ actuators (base, green), with stiff x/y actuators (dashed) and those replayed 4ร
 (dotted); (bottom) per goal the progress
 along the goal against time (straight, diagonal: the displacement along the goal's direction;
 turn: the yaw), and a last panel with the relative gap of every MuJoCo variant against the
-bound of the ledger's own check. The longest plan in the data is drawn (1200 steps, 6 s; the
-quick run has shorter ones). Without MuJoCo in the build only the plans are drawn and the panels
+bound of the ledger's own check. Each variant's longest plan in the data is drawn (1200 steps,
+6 s; the Coulomb plan 300 steps unless `--full`; the quick run has shorter ones). Without MuJoCo in the build only the plans are drawn and the panels
 say so.
 """
 from __future__ import annotations
@@ -60,15 +62,27 @@ def main():
     t = c.Table(path, cols)
     if t.n == 0:
         c.fail(f"{path}: no data rows")
-    goal_col, label_col = t.str("goal"), t.str("label")
+    coulomb_path = args.data / STUDY / "replay_coulomb.csv"
+    tc = c.Table(coulomb_path, cols) if coulomb_path.is_file() else None
     steps = int(np.nanmax(t["steps"]))
     have_mujoco = bool(np.isfinite(t["x_mujoco"]).any())
 
-    def run(goal: str, label: str) -> dict | None:
-        m = (goal_col == goal) & (label_col == label) & (t["steps"] == steps)
+    def longest(table, label: str) -> int | None:
+        if table is None or table.n == 0:
+            return None
+        m = table.str("label") == label
+        return int(np.nanmax(table["steps"][m])) if m.any() else None
+
+    def run(goal: str, label: str, length: int | None = None) -> dict | None:
+        table = tc if label == "coulomb" else t
+        length = length if length is not None else longest(table, label)
+        if length is None:
+            return None
+        m = ((table.str("goal") == goal) & (table.str("label") == label)
+             & (table["steps"] == length))
         if not m.any():
             return None
-        s = t.subset(m)
+        s = table.subset(m)
         order = np.argsort(s["t"])
         out = {k: s[k][order] for k in ("t", "x", "y", "theta", "x_mujoco", "y_mujoco",
                                          "theta_mujoco")}
@@ -141,6 +155,22 @@ def main():
             values[f"{label}_{goal}_rel_gap"] = rel_gap(r, goal)
         values[f"plan_{goal}_duration_s"] = float(base["t"][-1] - base["t"][0])
 
+    # The Coulomb plan beside the same robot's turn of the same length planned with the viscous
+    # ansatz: the friction law's share of the turn's yaw deficit, like for like.
+    if "coulomb_turn_rel_gap" not in values:
+        values["coulomb_turn_rel_gap"] = None
+        values["coulomb_turn_rel_gap_reason"] = "no Coulomb plan of the turn in the data"
+    coulomb_steps = longest(tc, "coulomb")
+    values["coulomb_steps"] = coulomb_steps
+    reference = run("turn", "stiff", coulomb_steps) if coulomb_steps is not None else None
+    values["coulomb_reference_turn_rel_gap"] = (rel_gap(reference, "turn")
+                                                if reference is not None else None)
+    if coulomb_steps is None:
+        values["coulomb_steps_reason"] = f"{c.shown_path(coulomb_path)} is missing"
+    if values["coulomb_reference_turn_rel_gap"] is None:
+        values["coulomb_reference_turn_rel_gap_reason"] = (
+            "no Coulomb plan, or no stiff turn of its length in replay.csv")
+
     # The relative gap of every MuJoCo variant, per goal, against the bound.
     ax3 = fig.add_subplot(gs[:, 3])
     present = [lab for lab in LABELS if any(run(g, lab) is not None for g in GOALS)]
@@ -151,7 +181,8 @@ def main():
                  color=c.CATEGORICAL[k], label=goal + (" (yaw)" if goal == "turn" else ""))
     ax3.axvline(BOUND, color=c.REFERENCE, ls="--", lw=1, label=f"bound {BOUND:g}")
     ax3.set_yticks(np.arange(len(present)))
-    ax3.set_yticklabels([SHORT[lab] for lab in present])
+    ax3.set_yticklabels([SHORT[lab] + (f"\n({coulomb_steps} steps)" if lab == "coulomb" and
+                                        coulomb_steps != steps else "") for lab in present])
     ax3.invert_yaxis()
     ax3.set_xlabel("final gap / the plan's travel")
     ax3.set_title("(g) relative gap of each variant")
