@@ -418,6 +418,54 @@ def csv_row(path: Path) -> str:
             f"<td><details><summary>{spec_label}</summary><pre>{esc(spec)}</pre></details></td></tr>")
 
 
+def sweep_outcomes(data: Path, studies: list[str]) -> list[dict]:
+    """Every sweep sidecar's failed and at-budget points: study, name, kind, counts, messages."""
+    out = []
+    for study in studies:
+        folder = data / study
+        for side in sorted(folder.glob("*.json")) if folder.is_dir() else []:
+            try:
+                meta = json.loads(side.read_text())
+            except (OSError, json.JSONDecodeError):
+                continue
+            if not isinstance(meta, dict) or "failed_point_count" not in meta:
+                continue  # not a sweep's sidecar (a trace, a scene run)
+            out.append({"study": study, "name": meta.get("name", side.stem),
+                        "kind": meta.get("kind", "?"), "points": meta.get("point_count", 0),
+                        "failed": meta.get("failed_point_count", 0),
+                        "budget": meta.get("budget_point_count", 0),
+                        "first": next((p.get("message", "") for p in
+                                       meta.get("failed_points", []) + meta.get("budget_points", [])
+                                       if isinstance(p, dict)), "")})
+    return out
+
+
+def outcomes_block(b: Build) -> str:
+    """The sweeps whose points failed (something that should not happen) and those with points
+    stopped at a budget their spec sets (a designed outcome, recorded with its status)."""
+    rows = sweep_outcomes(b.data, b.registry.studies())
+    failed = [r for r in rows if r["failed"]]
+    budget = [r for r in rows if r["budget"] and not r["failed"]]
+    n_failed = sum(r["failed"] for r in rows)
+    n_budget = sum(r["budget"] for r in rows)
+    head = (f"<p><b>{n_failed} failed points</b> in "
+            f"{len(rows)} sweeps ({sum(r['points'] for r in rows)} points); {n_budget} points "
+            "stopped at a budget their study sets on purpose (not failures: their rows carry "
+            "the status).</p>")
+    if not failed and not budget:
+        return head
+
+    def row(r: dict) -> str:
+        cls = " class='bad'" if r["failed"] else ""
+        return (f"<tr{cls}><td>{esc(r['study'])}/{esc(r['name'])}</td><td><code>{esc(r['kind'])}"
+                f"</code></td><td>{r['points']}</td><td>{r['failed']}</td><td>{r['budget']}</td>"
+                f"<td class='small'>{esc(str(r['first'])[:200])}</td></tr>")
+    return head + (
+        "<div class='scroll'><table class='data'><thead><tr><th>sweep</th><th>kind</th>"
+        "<th>points</th><th>failed</th><th>at budget</th><th>first message</th></tr></thead>"
+        "<tbody>" + "\n".join(row(r) for r in failed + budget) + "</tbody></table></div>")
+
+
 def build_commit(repo: Path) -> str:
     try:
         commit = subprocess.run(["git", "-C", str(repo), "rev-parse", "HEAD"],
@@ -474,6 +522,8 @@ def block_html(b: Build, page: reg.Page, block: reg.Block, figures: list[reg.Fig
         return pages_block(b, page)
     if name == "provenance":
         return provenance_block(b)
+    if name == "outcomes":
+        return outcomes_block(b)
     raise ValueError(f"block {name} has no renderer")  # registry.BLOCKS and this list agree
 
 

@@ -39,7 +39,7 @@ RESERVED_SCRIPTS = {"claims", "model"}
 # data file and this build come from.
 BLOCKS = {"figures": {"section"}, "figure": {"script"}, "verdicts": {"chapter"},
           "claims": {"chapter"}, "ledger": set(), "own-checks": set(), "pages": set(),
-          "provenance": set()}
+          "provenance": set(), "outcomes": set()}
 REQUIRED_ARGS = {"figure": {"script"}, "claims": {"chapter"}}
 MARKER = re.compile(r"^\{\{\s*([a-z][a-z-]*)((?:\s+[a-z]+=[^\s{}=]+)*)\s*\}\}\s*$")
 
