@@ -11,6 +11,15 @@ endif
 # Ninja starts a layer's files while the layer below links (Make waits at every library). A build
 # folder keeps the generator it was made with.
 export CMAKE_GENERATOR ?= Ninja
+# ccache (Debian's package) when present, never required: a rebuild of unchanged sources, in this
+# folder or a fresh clone's, comes from its cache. The sloppiness lets it cache the files built
+# with a precompiled header (their __DATE__/__TIME__ are not used). A build folder keeps the
+# launcher it was configured with.
+CCACHE := $(shell command -v ccache 2>/dev/null)
+ifneq ($(CCACHE),)
+CMAKE_ARGS += -DCMAKE_C_COMPILER_LAUNCHER=$(CCACHE) -DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE)
+export CCACHE_SLOPPINESS ?= pch_defines,time_macros,include_file_mtime,include_file_ctime
+endif
 
 DEBIAN_PACKAGES := cmake ninja-build g++ make pkg-config git \
   libeigen3-dev libsundials-dev libgsl-dev libboost-dev \
@@ -20,8 +29,8 @@ DEBIAN_PACKAGES := cmake ninja-build g++ make pkg-config git \
   libmujoco-dev \
   python3 python3-matplotlib python3-numpy python3-markdown chromium
 
-.PHONY: all deps build test reproduce reproduce-quick bench format format-check tidy clean \
-  sanitize sanitize-quick fuzz
+.PHONY: all deps build build-cli test reproduce reproduce-quick bench format format-check tidy \
+  clean sanitize sanitize-quick fuzz
 
 all: build
 
@@ -43,14 +52,22 @@ $(BUILD)/CMakeCache.txt: | deps
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
+# The reproduction runs one binary: `slipwalk` and the library under it, not the ~110 test and
+# benchmark executables (`make test` builds those).
+build-cli: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target slipwalk
+
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-reproduce: build
-	$(BUILD)/bin/slipwalk reproduce
+# Exits 1 when a sweep point failed (listed by study and kind), after writing everything else.
+# REPRODUCE_ARGS adds options, e.g. `make reproduce REPRODUCE_ARGS=--full` for the long variants.
+REPRODUCE_ARGS ?=
+reproduce: build-cli
+	$(BUILD)/bin/slipwalk reproduce $(REPRODUCE_ARGS)
 
-reproduce-quick: build
-	$(BUILD)/bin/slipwalk reproduce --quick
+reproduce-quick: build-cli
+	$(BUILD)/bin/slipwalk reproduce --quick $(REPRODUCE_ARGS)
 
 # The built report as a reader sees it, in headless Chromium (reports/site/check_pages.py):
 # images load, nothing is wider than the page, no text below 8 pt; screenshots in reports/out/screens.
