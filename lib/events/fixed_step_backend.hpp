@@ -71,8 +71,8 @@ class FixedStepBackend {
         std::array<char, 32> step{};
         (void)std::snprintf(step.data(), step.size(), "%.3g", h);
         throw core::BudgetExhausted("fixed_rk4: step budget of " +
-                                    std::to_string(options_.max_steps) + " steps (h = " +
-                                    step.data() + " s) used up");
+                                    std::to_string(options_.max_steps) +
+                                    " steps (h = " + step.data() + " s) used up");
       }
       rk4_step(flow, x, dx, t - t_prev);
       ++stats_.steps;

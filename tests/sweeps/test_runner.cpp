@@ -178,8 +178,8 @@ TEST(Runner, InterruptedThenResumedIsByteIdentical) {
 
 TEST(Runner, CorruptEndMarksInACheckpointResumeTheirPointsAsUnfinished) {
   // A point counts as finished only under a well-formed `#done,<id>,<0|1|2>,<message>` line: an
-  // overflowing or signed id, another outcome or a missing comma is read as no mark, so its rows are
-  // dropped and the point is run again (never a clamped or wrapped id).
+  // overflowing or signed id, another outcome or a missing comma is read as no mark, so its rows
+  // are dropped and the point is run again (never a clamped or wrapped id).
   const PreparedSweep sweep = prepared();
   const ScratchDir full;
   const std::string reference = read_text(run(sweep, options(full.path(), 2)).csv);
@@ -541,7 +541,7 @@ TEST(SweepCli, ReproduceRunsAStudy) {
   const ScratchDir d;
   const auto study = d / "studies" / "demo";
   std::filesystem::create_directories(study);
-  write_text(study / "study.toml", R"(title = "demo"
+  const std::string demo = R"(title = "demo"
 sweeps = ["grid.toml"]
 [[trace]]
 name = "trace"
@@ -549,7 +549,8 @@ F = 45.0
 mu = 1.0
 cycles = 2
 dt = 0.01
-)");
+)";
+  write_text(study / "study.toml", demo);
   std::string spec = kSpec;
   spec.replace(spec.find("\"test\""), 6, "\"demo\"");
   write_text(study / "grid.toml", spec);
@@ -588,15 +589,7 @@ max_strokes = 8
   const auto known = run_slipwalk(args);
   EXPECT_EQ(known.exit_code, 0) << known.err;
   EXPECT_NE(known.out.find("1 of 1 points failed, expected"), std::string::npos) << known.out;
-  write_text(study / "study.toml", R"(title = "demo"
-sweeps = ["grid.toml"]
-[[trace]]
-name = "trace"
-F = 45.0
-mu = 1.0
-cycles = 2
-dt = 0.01
-)");
+  write_text(study / "study.toml", demo);
   std::filesystem::remove(failing);
   std::filesystem::remove_all(data);
 
