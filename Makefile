@@ -12,13 +12,15 @@ endif
 # folder keeps the generator it was made with.
 export CMAKE_GENERATOR ?= Ninja
 # ccache (Debian's package) when present, never required: a rebuild of unchanged sources, in this
-# folder or a fresh clone's, comes from its cache. The sloppiness lets it cache the files built
-# with a precompiled header (their __DATE__/__TIME__ are not used). A build folder keeps the
-# launcher it was configured with.
+# folder or a fresh clone's (paths below the clone are hashed relative to it), comes from its
+# cache. The sloppiness lets it cache the files built with a precompiled header (their
+# __DATE__/__TIME__ are not used); a build run without it (cmake --build by hand) compiles them
+# uncached. A build folder keeps the launcher it was configured with.
 CCACHE := $(shell command -v ccache 2>/dev/null)
 ifneq ($(CCACHE),)
 CMAKE_ARGS += -DCMAKE_C_COMPILER_LAUNCHER=$(CCACHE) -DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE)
 export CCACHE_SLOPPINESS ?= pch_defines,time_macros,include_file_mtime,include_file_ctime
+export CCACHE_BASEDIR ?= $(CURDIR)
 endif
 
 DEBIAN_PACKAGES := cmake ninja-build g++ make pkg-config git \
