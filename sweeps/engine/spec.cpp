@@ -279,9 +279,9 @@ void apply_overrides(Spec& spec, const toml::node& node, const std::string& sect
           const bool in_points = std::any_of(b.points.begin(), b.points.end(),
                                              [&](const auto& p) { return has_key(p, key); });
           if (find_axis(b, key) != nullptr || in_points) {
-            throw InputError(value.origin, section + ".params." + key +
-                                               ": an axis or point key; override it in " + section +
-                                               ".axes");
+            std::string what = section + ".params.";
+            what.append(key).append(": an axis or point key; override it in ");
+            throw InputError(value.origin, what.append(section).append(".axes"));
           }
         }
         put(spec.params, key, value);
@@ -315,9 +315,10 @@ void apply_overrides(Spec& spec, const toml::node& node, const std::string& sect
       spec.blocks[static_cast<std::size_t>(top_block)].points = parse_points(v, path);
       check_block(spec.blocks[static_cast<std::size_t>(top_block)]);
     } else {
-      throw InputError(origin_of(k.source(), path),
-                       "unknown key '" + section + "." + std::string(k.str()) + "'; expected " +
-                           section + ".params, " + section + ".axes, " + section + ".points");
+      std::string what = "unknown key '" + section;
+      what.append(".").append(k.str()).append("'; expected ").append(section);
+      what.append(".params, ").append(section).append(".axes, ").append(section);
+      throw InputError(origin_of(k.source(), path), what.append(".points"));
     }
   }
 }
