@@ -126,7 +126,7 @@ PointKind kind_of(const std::string& name) {
   return make_point_kind<Row>(
       name, "test rows", Timed::kNo, [](const Point& p) { (void)row_of<Row>(p); },
       [](const Point& p) {
-        return Rows<Row>{{row_of<Row>(p)}, false, ""};
+        return Rows<Row>{{row_of<Row>(p)}, false, false, ""};
       });
 }
 
@@ -316,7 +316,7 @@ PointKind recording_kind(const std::string& name, Timed timed, std::chrono::mill
         i.end = std::chrono::steady_clock::now();
         const std::lock_guard lock(log_mutex);
         log.push_back(i);
-        return Rows<IdRow>{{IdRow{p.id}}, false, ""};
+        return Rows<IdRow>{{IdRow{p.id}}, false, false, ""};
       });
 }
 
