@@ -50,20 +50,25 @@ fs::path csv_of(const JobContext& context, const Study& study, const std::string
   return context.sweep.data_dir / study.id / (name + ".csv");
 }
 
+/// A job's summary with its identity set: `points` points, none failed, resumed or timed.
+JobSummary summary_of(std::string study, std::string name, const char* kind, fs::path csv,
+                      long long points) {
+  JobSummary s;
+  s.study = std::move(study);
+  s.name = std::move(name);
+  s.kind = kind;
+  s.csv = std::move(csv);
+  s.points = points;
+  return s;
+}
+
 /// A summary for a job kept from an earlier run.
 JobSummary kept(std::string study, std::string name, const char* kind, fs::path csv,
                 long long points, long long failed) {
-  return {std::move(study),
-          std::move(name),
-          kind,
-          std::move(csv),
-          points,
-          failed,
-          points,
-          0.0,
-          {},
-          {},
-          0};
+  JobSummary s = summary_of(std::move(study), std::move(name), kind, std::move(csv), points);
+  s.failed = failed;
+  s.resumed = points;
+  return s;
 }
 
 /// The sidecar of a study entry's finished output when it was written for the same entry (its
@@ -112,7 +117,7 @@ JobSummary run_kind(const SweepRun& run, const JobContext& context) {
       points.push_back(p.to_json());
     }
     if (!side.is_null() && side.value("kind", "") == sweep.spec.kind &&
-        side.value("quick", !sweep.spec.quick) == sweep.spec.quick &&
+        side.value("quick", !sweep.spec.quick()) == sweep.spec.quick() &&
         side.value("variant", std::string()) == variant_name(sweep.spec.variant) &&
         side.value("columns", nlohmann::json()) == nlohmann::json(sweep.kind->column_names()) &&
         side.value("points", nlohmann::json()) == points) {
@@ -126,8 +131,13 @@ JobSummary run_kind(const SweepRun& run, const JobContext& context) {
   }
   const auto start = Clock::now();
   const RunSummary s = sweeps::run(sweep, context.sweep);
-  return {sweep.spec.study, sweep.spec.name,      "sweep", s.csv,           s.points,   s.failed,
-          s.resumed,        seconds_since(start), {},      sweep.spec.kind, s.at_budget};
+  JobSummary done = summary_of(sweep.spec.study, sweep.spec.name, "sweep", s.csv, s.points);
+  done.failed = s.failed;
+  done.resumed = s.resumed;
+  done.seconds = seconds_since(start);
+  done.point_kind = sweep.spec.kind;
+  done.at_budget = s.at_budget;
+  return done;
 }
 
 }  // namespace
@@ -183,7 +193,9 @@ JobSummary write_trace_job(const Study& study, const TraceJob& job, const fs::pa
       {"provenance", core::build_provenance()},
   };
   core::write_file_atomically(sidecar_of(csv), sidecar.dump(1) + "\n");
-  return {study.id, job.name, "trace", csv, 1, 0, 0, seconds_since(start), {}, {}, 0};
+  JobSummary done = summary_of(study.id, job.name, "trace", csv, 1);
+  done.seconds = seconds_since(start);
+  return done;
 }
 
 JobSummary write_scene_job(const Study& study, const SceneJob& job, const fs::path& data_dir,
@@ -199,7 +211,7 @@ JobSummary write_scene_job(const Study& study, const SceneJob& job, const fs::pa
       {"date", utc_now()},
   };
   const scene::RunResult result = scene::write_run(sc, sim, csv, extra, nullptr);
-  JobSummary summary{study.id, job.name, "scene", csv, 1, 0, 0, 0.0, {}, {}, 0};
+  JobSummary summary = summary_of(study.id, job.name, "scene", csv, 1);
   const connection::TrajectorySummary& s = result.summary;
   if (!s.message.empty()) {
     summary.warning = study.id + "/" + job.name + ": " + std::to_string(s.unsupported) +

@@ -546,7 +546,6 @@ Spec parse_spec(std::string_view text, const std::string& path, Variant variant)
   }
   Spec out = std::move(sizes[run]);
   out.variant = variant;
-  out.quick = variant == Variant::kQuick;
   for (std::size_t i = 0; i < sizes.size(); ++i) {
     if (i != run) {
       out.others.push_back(

@@ -88,7 +88,6 @@ struct Spec {
   /// `budget_stops = "expected"`: a point that stops at a budget (PointResult::at_budget) is a
   /// designed outcome of this study, counted apart; "failures" (the default): it is a failure.
   bool budget_stops_expected = false;
-  bool quick = false;     ///< variant == Variant::kQuick
   nlohmann::json source;  ///< the whole file as JSON (before any overrides)
   NamedValues params;     ///< [params] (the variant's params applied)
   std::vector<Block> blocks;
@@ -96,6 +95,8 @@ struct Spec {
   /// one run. prepare() checks their points too, so that a bad value is refused before anything
   /// runs whichever size is run, including a value that --quick or --full overrides.
   std::vector<OtherVariant> others;
+
+  [[nodiscard]] bool quick() const { return variant == Variant::kQuick; }
 };
 
 /// Largest number of points a spec may expand to.

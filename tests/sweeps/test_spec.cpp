@@ -173,7 +173,7 @@ params.rtol = 1e-6
   EXPECT_EQ(num(quick[5], "mu"), 0.2);  // the axis keeps its place
   EXPECT_EQ(num(quick[0], "rtol"), 1e-6);
   EXPECT_EQ(num(full[0], "rtol"), 1e-10);
-  EXPECT_TRUE(parse(body, true).quick);
+  EXPECT_TRUE(parse(body, true).quick());
 }
 
 TEST(Spec, FullOverridesAreTheLongVariantAndEachSizeRunsOnlyItsOwn) {
@@ -201,8 +201,8 @@ params.repeats = 5
   EXPECT_EQ(num(expand(def)[0], "repeats"), 1.0);
   EXPECT_EQ(num(expand(quick)[0], "repeats"), 1.0);  // [full] does not leak into --quick
   EXPECT_EQ(full.variant, Variant::kFull);
-  EXPECT_FALSE(full.quick);
-  EXPECT_TRUE(quick.quick);
+  EXPECT_FALSE(full.quick());
+  EXPECT_TRUE(quick.quick());
   // The two sizes not run are kept for prepare() to check.
   ASSERT_EQ(full.others.size(), 2U);
   EXPECT_EQ(full.others[0].variant, Variant::kDefault);
