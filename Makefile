@@ -90,7 +90,7 @@ format-check:
 # read GCC's): configuring takes seconds and builds nothing.
 TIDY_BUILD ?= build-tidy
 tidy: deps
-	cmake -S . -B $(TIDY_BUILD) -DCMAKE_BUILD_TYPE=Release -DSLIPWALK_PCH=OFF $(CMAKE_ARGS) >/dev/null
+	cmake -S . -B $(TIDY_BUILD) -DCMAKE_BUILD_TYPE=Release -DSLIPWALK_PCH=OFF -DSLIPWALK_UNITY=OFF $(CMAKE_ARGS) >/dev/null
 	find lib sweeps -name '*.cpp' | xargs -P $(JOBS) -n 4 clang-tidy -p $(TIDY_BUILD) --quiet
 
 # Everything under AddressSanitizer + UBSan (g++), in its own build folder: asserts on (no

@@ -81,8 +81,9 @@ using Status = SupportSummary::Status;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using detail::kEps;
+using detail::kInf;
+using detail::kPolished;
 // An eigenvalue of G = Σ a_k a_kᵀ below kRankTol × the largest is a null direction (a motion that
 // keeps the contacts' compressions): contacts in a row or at one point (to ~3e-7 L).
 constexpr double kRankTol = 1e-13;
@@ -92,8 +93,6 @@ constexpr double kFlatTol = 1e-12;
 constexpr double kRateTol = 1e-13;
 // The rounding error of a height h_j = a_j·u + q_z,j, relative to |u|₁ + |q_z,j|.
 constexpr double kNoise = 8.0 * kEps;
-// A balance residual below this is not polished further.
-constexpr double kPolished = 1e-14;
 
 // The per-call geometry and the search state, in the scaled coordinates u = (αL, βL, z).
 struct Search {

@@ -49,12 +49,12 @@ namespace {
 using L = core::Lanes<4>;
 using V = L::V;
 using M = L::M;
+using detail::kEps;
+using detail::kInf;
 using detail::kMaxSteps;
 using detail::kNearPlane;
 using detail::kPolished;
 using detail::kRoundingCap;
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kLanes = 4;
 
 // The sums of one pass, lane i those of frame i (support_newton.cpp's Sums without the reduction).

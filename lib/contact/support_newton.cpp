@@ -69,8 +69,6 @@ namespace slipwalk::contact::detail {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 // From this many legs the cold start is the level start (see the top: where it starts to save
 // time, not instructions). Its height takes steps in z alone until one is taken from a cell of at
 // most kLevelCellFeet feet or where the feet carry at most kLevelNear × Mg (close to the level

@@ -3,6 +3,8 @@
 // and certificate): the fast route of the spring-support search (spring_support.hpp), an
 // active-set (semismooth) Newton method on the convex potential U of spring_support.cpp. Each
 // step is one vectorized pass over the feet; the answer is certified or rejected, never guessed.
+#include <limits>
+
 #include "contact/robot.hpp"
 #include "core/lanes.hpp"  // cell_newton_step takes its lanes (and -Wpsabi is off for them there)
 #include "core/sym3.hpp"
@@ -10,6 +12,8 @@
 namespace slipwalk::contact::detail {
 
 // The certificate's constants, shared with the batched route (support_batch.cpp).
+inline constexpr double kEps = std::numeric_limits<double>::epsilon();
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr int kMaxSteps = 12;
 inline constexpr double kDefiniteTol = 1e-10;  // λ_min(H̃) / tr(H̃) below this: leave it to the path
 inline constexpr double kPolished = 1e-14;     // balance residual that needs no refinement

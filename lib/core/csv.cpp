@@ -22,6 +22,12 @@ std::string_view trim_blanks(std::string_view s) {
   return s;
 }
 
+std::string format_approx(double value) {
+  std::array<char, 32> buffer{};
+  (void)std::snprintf(buffer.data(), buffer.size(), "%.3g", value);
+  return buffer.data();
+}
+
 std::string format_double(double value) {
   if (std::isnan(value)) {
     return "nan";

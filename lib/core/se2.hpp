@@ -52,6 +52,13 @@ inline constexpr double kSincSeriesBelow = 1e-2;
   return r;
 }
 
+/// A shaft angle in turns wrapped to [0, 1): x − ⌊x⌋, where for x just below an integer the
+/// difference can round up to 1.0 exactly (the same angle as 0).
+[[nodiscard]] inline double wrap_turns(double x) {
+  const double w = x - std::floor(x);
+  return w >= 1.0 ? 0.0 : w;
+}
+
 /// a·b: first a, then b expressed in a's body frame.
 [[nodiscard]] inline Pose2 compose(const Pose2& a, const Pose2& b) {
   const double c = std::cos(a.theta);

@@ -22,7 +22,7 @@ namespace {
 
 using L = core::Lanes<4>;
 using V = L::V;
-using M = L::M;
+using Mask = L::M;
 constexpr int kLanes = 4;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -62,11 +62,11 @@ SLIPWALK_CLONES unsigned viscous_group(const contact::Robot& robot, contact::Fra
     const V y{q[0][p + 1], q[1][p + 1], q[2][p + 1], q[3][p + 1]};
     const V dx{qd[0][p], qd[1][p], qd[2][p], qd[3][p]};
     const V dy{qd[0][p + 1], qd[1][p + 1], qd[2][p + 1], qd[3][p + 1]};
-    const M in_contact{down[0][j] != 0 ? -1 : 0, down[1][j] != 0 ? -1 : 0, down[2][j] != 0 ? -1 : 0,
-                       down[3][j] != 0 ? -1 : 0};
+    const Mask in_contact{down[0][j] != 0 ? -1 : 0, down[1][j] != 0 ? -1 : 0,
+                          down[2][j] != 0 ? -1 : 0, down[3][j] != 0 ? -1 : 0};
     // friction_weight(): c = μ F_z for a foot in contact with finite positive c, else 0.
     const V cm = L::splat(mu[j]) * V{fz[0][j], fz[1][j], fz[2][j], fz[3][j]};
-    const M on = in_contact & (cm > 0.0) & (cm < kInfinity);
+    const Mask on = in_contact & (cm > 0.0) & (cm < kInfinity);
     const V c = L::select(on, cm);
     L::store(cs + kLanes * j, c);
     L::store(xs + kLanes * j, x);
@@ -97,7 +97,7 @@ SLIPWALK_CLONES unsigned viscous_group(const contact::Robot& robot, contact::Fra
   const V c2 = -(m02 * m00);
   const V m3 = m00 * c0 + m02 * c2;
   (void)c1;  // multiplies m01 = 0 in m3
-  M solved = (m00 > floor) & (m2 > floor * m00) & (m3 > floor * m2) & (M{0, 1, 2, 3} < m);
+  Mask solved = (m00 > floor) & (m2 > floor * m00) & (m3 > floor * m2) & (Mask{0, 1, 2, 3} < m);
   if (!core::any(solved)) {
     return 0;
   }

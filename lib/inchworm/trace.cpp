@@ -20,13 +20,6 @@ namespace {
 /// digits), the modes and an event name.
 constexpr double kBytesPerRow = 170.0;
 
-/// A number for a message: three significant digits.
-std::string approx(double v) {
-  std::array<char, 32> buf{};
-  (void)std::snprintf(buf.data(), buf.size(), "%.3g", v);
-  return buf.data();
-}
-
 /// The CSV and its row bound.
 struct Rows {
   core::CsvWriter csv;
@@ -145,10 +138,11 @@ void check_trace_size(const Params& p, Method method, const TraceOptions& opt) {
   if (size.rows > static_cast<double>(opt.max_rows)) {
     throw core::InputError("--dt", "--cycles " + std::to_string(opt.cycles) + " at --dt " +
                                        core::format_double(opt.sample_dt) +
-                                       " s would write about " + approx(size.rows) + " rows (~" +
-                                       approx(size.bytes / 1e6) + " MB; stroke period " +
-                                       approx(steady_period(p)) + " s), more than --max-rows " +
-                                       std::to_string(opt.max_rows) +
+                                       " s would write about " + core::format_approx(size.rows) +
+                                       " rows (~" + core::format_approx(size.bytes / 1e6) +
+                                       " MB; stroke period " +
+                                       core::format_approx(steady_period(p)) +
+                                       " s), more than --max-rows " + std::to_string(opt.max_rows) +
                                        ": raise --dt, lower --cycles or raise --max-rows");
   }
   VssOptions vo;

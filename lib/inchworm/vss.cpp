@@ -78,13 +78,6 @@ VssResult simulate(const Params& p, Method method, const VssOptions& opt, Backen
   return r;
 }
 
-/// A number for a message: three significant digits.
-std::string approx(double v) {
-  std::array<char, 32> buf{};
-  (void)std::snprintf(buf.data(), buf.size(), "%.3g", v);
-  return buf.data();
-}
-
 /// A converged result must be made of numbers: the first non-finite one makes it not converged,
 /// saying which. A simulation's contraction may be NaN (its differences reached the noise
 /// floor: not estimable), never infinite.
@@ -165,8 +158,9 @@ void check_fixed_step_budget(const Params& p, Method method, const VssOptions& o
   if (std::isfinite(period) && steps > static_cast<double>(bo.max_steps)) {
     throw core::InputError(
         option, "fixed_rk4's step h = " + core::format_double(bo.step) + " s takes about " +
-                    approx(period / bo.step) + " steps per stroke (period " + approx(period) +
-                    " s), about " + approx(steps) + " for " + approx(strokes) +
+                    core::format_approx(period / bo.step) + " steps per stroke (period " +
+                    core::format_approx(period) + " s), about " + core::format_approx(steps) +
+                    " for " + core::format_approx(strokes) +
                     " strokes: more than the step budget of " + std::to_string(bo.max_steps) +
                     " (raise the step or --max-steps)");
   }

@@ -10,12 +10,7 @@ namespace slipwalk::planning {
 
 namespace {
 
-/// x − ⌊x⌋: a shaft angle in [0, 1). (For x just below an integer the difference can round up
-/// to 1.0 exactly; that is the same angle as 0.)
-double wrap_turns(double x) {
-  const double w = x - std::floor(x);
-  return w >= 1.0 ? 0.0 : w;
-}
+using core::wrap_turns;
 
 bool support_ok(const contact::SupportSummary& s) {
   using Status = contact::SupportSummary::Status;

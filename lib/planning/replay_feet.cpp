@@ -12,11 +12,7 @@ namespace slipwalk::planning {
 
 namespace {
 
-/// x mod 1 in [0, 1): floor leaves 1.0 for x a hair below an integer's negative side.
-double wrap_turns(double x) {
-  const double w = x - std::floor(x);
-  return w >= 1.0 ? 0.0 : w;
-}
+using core::wrap_turns;
 
 /// The step that holds time t: −1 before the first, S at or after the end, else n with
 /// t_n ≤ t < t_{n+1} (t_S = the end). No allocation.

@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kMass = 12.0;         // kg (Spirit 40 is about 12 kg)
-constexpr double kGravity = 9.81;      // m/s²
+constexpr double kG = 9.81;            // m/s², gravity
 constexpr double kHipX = 0.22;         // m, hips fore and aft of the centre (0.5 m body)
 constexpr double kFootY = 0.15;        // m, feet to the side (0.3 m body)
 constexpr double kStanceDepth = 0.30;  // m, feet below the body in stance
@@ -52,7 +52,7 @@ Walker quadruped_trot(const TrotGait& gait) {
   detail::require_in("quadruped_trot.swing_height", gait.swing_height,
                      core::positive_up_to(0.2, "m"));
 
-  const double mg = kMass * kGravity;
+  const double mg = kMass * kG;
   Walker w;
   w.name = "quadruped_trot";
   w.robot = contact::uniform_robot(4, mg / (2.0 * kSinkage), 1.0, mg);

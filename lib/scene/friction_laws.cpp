@@ -19,10 +19,6 @@ void nothing_to_read(const TableReader&, int, FrictionEffect&) {}
 void no_parameters(const FrictionEffect&, nlohmann::json&) {}
 void robot_as_is(const FrictionEffect&, contact::Robot&) {}
 
-bool contains(const std::vector<std::string_view>& list, std::string_view word) {
-  return std::find(list.begin(), list.end(), word) != list.end();
-}
-
 // The anisotropy w of eq. 3.19 (H ∝ I + w wᵀ; Coulomb's ellipse Fᵀ G⁻¹ F ≤ (μ F_z)², G = I + w wᵀ),
 // shared by the laws that take it: one reader, one JSON form, one way onto the robot. An effect
 // without w (0 columns) leaves the robot isotropic.

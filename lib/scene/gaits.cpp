@@ -261,10 +261,6 @@ decltype(auto) with_entry(const Gait& gait, F&& f) {
       gait);
 }
 
-bool contains(const std::vector<std::string_view>& list, std::string_view word) {
-  return std::find(list.begin(), list.end(), word) != list.end();
-}
-
 void add_once(std::vector<std::string_view>& list, std::string_view word) {
   if (!contains(list, word)) {
     list.push_back(word);

@@ -6,6 +6,7 @@
 // table or effect extends the schema, not this reader.
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -39,6 +40,12 @@ void check_top_level(const toml::table& doc, const std::string& path,
 /// else empty.
 [[nodiscard]] std::string_view nearest(std::string_view word,
                                        const std::vector<std::string_view>& candidates);
+
+/// Whether `word` is one of `list` (the tables' key and owner lists are short).
+[[nodiscard]] inline bool contains(const std::vector<std::string_view>& list,
+                                   std::string_view word) {
+  return std::find(list.begin(), list.end(), word) != list.end();
+}
 
 /// Who owns a key, for messages: "the tripod gait", "the tripod and trot gaits",
 /// "the a, b and c gaits" (`names` in order, `noun` singular).

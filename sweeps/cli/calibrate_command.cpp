@@ -20,7 +20,6 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -65,11 +64,8 @@ constexpr int kMaxHarmonics = 16;
 constexpr std::array<std::string_view, 4> kSynthFiles = {"geometry.toml", "hanging.csv",
                                                          "poses.csv", "truth.json"};
 
-std::string format(double x, int precision = 4) {
-  std::ostringstream s;
-  s << std::setprecision(precision) << x;
-  return s.str();
-}
+/// Estimates are shown to 4 significant digits unless a call says otherwise.
+std::string format(double x, int digits = 4) { return significant(x, digits); }
 
 /// The fewest poses a model's fit takes: DOF / 6 + 1 (standing.hpp's fit_mounting).
 Eigen::Index min_poses(const ModelChoice& m, int legs) {

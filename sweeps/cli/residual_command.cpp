@@ -13,7 +13,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -42,14 +41,11 @@ using core::InputError;
 /// σ_max² · 10^e for e = kGridLow..0 — from no shrinkage to shrinking every direction by half.
 constexpr int kGridLow = -12;
 
-std::string format(double x) {
-  std::ostringstream s;
-  s << std::setprecision(3) << x;
-  return s.str();
-}
+std::string three_digits(double x) { return significant(x, 3); }
 
 std::string components(const Eigen::Vector3d& v) {
-  return "v_x " + format(v(0)) + " m/s, v_y " + format(v(1)) + " m/s, ω " + format(v(2)) + " rad/s";
+  return "v_x " + three_digits(v(0)) + " m/s, v_y " + three_digits(v(1)) + " m/s, ω " +
+         three_digits(v(2)) + " rad/s";
 }
 
 struct ResidualFitCommand {
@@ -181,7 +177,7 @@ struct ResidualFitCommand {
         throw core::ComputationError(
             "the fitted B has an entry " + core::format_double(fit.B.data()[i]) +
             " outside the residual file's range " + scene::ranges::kResidualEntry.describe() +
-            " (the q̇ matrix's condition number is " + format(fit.condition) +
+            " (the q̇ matrix's condition number is " + three_digits(fit.condition) +
             "; --estimator ridge shrinks B)");
       }
     }
@@ -199,7 +195,7 @@ struct ResidualFitCommand {
       comment << (&t == &trials.front() ? " " : "; ") << t.label;
     }
     comment << "\nsnapshots " << fit.snapshots << ", rank " << fit.rank << " of " << columns
-            << ", condition " << format(fit.condition) << "\n"
+            << ", condition " << three_digits(fit.condition) << "\n"
             << "rms residual before: " << components(fit.rms_before) << "\n"
             << "rms residual after:  " << components(fit.rms_after);
     core::AtomicFile file(out);
@@ -239,8 +235,8 @@ struct ResidualFitCommand {
     std::cout << "slipwalk residual fit: " << trials.size() << " trials, " << fit.snapshots
               << " snapshots, " << legs << " legs\n"
               << "q̇ matrix: rank " << fit.rank << " of " << columns << ", condition "
-              << format(fit.condition) << "\n"
-              << "estimator " << estimator << ", λ = " << format(fit.lambda) << "\n"
+              << three_digits(fit.condition) << "\n"
+              << "estimator " << estimator << ", λ = " << three_digits(fit.lambda) << "\n"
               << "rms residual before: " << components(fit.rms_before) << "\n"
               << "rms residual after:  " << components(fit.rms_after) << "\n";
   }
