@@ -22,9 +22,9 @@ std::string_view trim_blanks(std::string_view s) {
   return s;
 }
 
-std::string format_approx(double value) {
-  std::array<char, 32> buffer{};
-  (void)std::snprintf(buffer.data(), buffer.size(), "%.3g", value);
+std::string format_approx(double value, int digits) {
+  std::array<char, 48> buffer{};
+  (void)std::snprintf(buffer.data(), buffer.size(), "%.*g", digits, value);
   return buffer.data();
 }
 

@@ -13,8 +13,8 @@ namespace slipwalk::core {
 /// nan/inf.
 std::string format_double(double value);
 
-/// Formats a double to three significant digits (%.3g), for a message.
-std::string format_approx(double value);
+/// Formats a double to `digits` significant digits (%.*g), for a message or a summary line.
+std::string format_approx(double value, int digits = 3);
 
 /// The lines of a text, one at a time, with line numbers for messages. A line ends at '\n'; one
 /// '\r' before it (or at the end of the text) is part of the line end, so CRLF files read as

@@ -65,7 +65,7 @@ constexpr std::array<std::string_view, 4> kSynthFiles = {"geometry.toml", "hangi
                                                          "poses.csv", "truth.json"};
 
 /// Estimates are shown to 4 significant digits unless a call says otherwise.
-std::string format(double x, int digits = 4) { return significant(x, digits); }
+std::string format(double x, int digits = 4) { return core::format_approx(x, digits); }
 
 /// The fewest poses a model's fit takes: DOF / 6 + 1 (standing.hpp's fit_mounting).
 Eigen::Index min_poses(const ModelChoice& m, int legs) {

@@ -21,7 +21,4 @@ void add_calibrate_command(CLI::App& app);  ///< calibrate [synth] ...      (cal
 /// write, so that no other process's output lands inside it.
 [[nodiscard]] std::string error_line(const char* what);
 
-/// `x` to `digits` significant digits, as a summary line shows it (main.cpp).
-[[nodiscard]] std::string significant(double x, int digits);
-
 }  // namespace slipwalk::cli

@@ -5,9 +5,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <iomanip>
 #include <iostream>
-#include <sstream>
 #include <string>
 
 #include "core/atomic_file.hpp"
@@ -23,12 +21,6 @@ constexpr std::size_t kMaxMessageBytes = 1024;
 
 std::string slipwalk::cli::error_line(const char* what) {
   return "slipwalk: error: " + slipwalk::core::text_excerpt(what, kMaxMessageBytes) + "\n";
-}
-
-std::string slipwalk::cli::significant(double x, int digits) {
-  std::ostringstream s;
-  s << std::setprecision(digits) << x;
-  return s.str();
 }
 
 int main(int argc, char** argv) {

@@ -41,7 +41,7 @@ using core::InputError;
 /// σ_max² · 10^e for e = kGridLow..0 — from no shrinkage to shrinking every direction by half.
 constexpr int kGridLow = -12;
 
-std::string three_digits(double x) { return significant(x, 3); }
+std::string three_digits(double x) { return core::format_approx(x); }
 
 std::string components(const Eigen::Vector3d& v) {
   return "v_x " + three_digits(v(0)) + " m/s, v_y " + three_digits(v(1)) + " m/s, ω " +
