@@ -20,16 +20,15 @@ namespace slipwalk::cli {
 namespace {
 
 struct ReproduceCommand {
-  const std::string source = SLIPWALK_SOURCE_DIR;
   bool quick = false;
   bool full = false;
   bool fresh = false;
   bool keep_finished = false;
   bool no_report = false;
   int jobs = 0;
-  std::string data = source + "/data";
-  std::string report = source + "/reports/out";
-  std::string studies = source + "/studies";
+  std::string data = SLIPWALK_SOURCE_DIR "/data";
+  std::string report = SLIPWALK_SOURCE_DIR "/reports/out";
+  std::string studies = SLIPWALK_SOURCE_DIR "/studies";
   std::vector<std::string> names;
   std::vector<std::string> expected_failures;
 
@@ -49,7 +48,7 @@ struct ReproduceCommand {
     options.report = !no_report;
     options.report_dir = report;
     options.python = SLIPWALK_PYTHON;
-    options.report_builder = source + "/reports/site/build_report.py";
+    options.report_builder = SLIPWALK_SOURCE_DIR "/reports/site/build_report.py";
     options.kinds = sweeps::points::all_kinds();
     options.log = &std::cout;
     options.progress = &std::cerr;

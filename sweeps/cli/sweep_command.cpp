@@ -29,7 +29,7 @@ std::string budget_text(long long at_budget) {
 
 using core::InputError;
 
-std::string default_data() { return std::string(SLIPWALK_SOURCE_DIR) + "/data"; }
+std::string default_data() { return SLIPWALK_SOURCE_DIR "/data"; }
 
 struct SweepCommand {
   std::string spec;
