@@ -1,6 +1,6 @@
 # slipwalk — the two commands a fresh machine needs: `make reproduce` and `make test`.
 # Every target depends on `deps`, which installs the Debian packages that are missing (and only
-# those), saying what it installs.
+# those), saying what it installs; `make test` on `deps-test`, which adds the page checks' browser.
 
 BUILD     ?= build
 JOBS      ?= $(shell nproc)
@@ -29,24 +29,36 @@ DEBIAN_PACKAGES := cmake ninja-build g++ make pkg-config git \
   libceres-dev \
   openmpi-bin libopenmpi-dev \
   libmujoco-dev \
-  python3 python3-matplotlib python3-numpy python3-markdown chromium
+  python3 python3-matplotlib python3-numpy python3-markdown
+# Only `make test` and `make report-check` need these: headless Chromium reads the built pages
+# (reports/site/check_pages.py). It is a third of the packages' install time, off the
+# reproduction's path.
+DEBIAN_TEST_PACKAGES := chromium
 
-.PHONY: all deps build build-cli test reproduce reproduce-quick bench format format-check tidy \
+.PHONY: all deps deps-test build build-cli test reproduce reproduce-quick bench format format-check tidy \
   clean sanitize sanitize-quick fuzz
 
 all: build
 
-deps:
-	@missing=""; for p in $(DEBIAN_PACKAGES); do \
+# install_missing(packages): installs those of `packages` that are missing, saying which.
+define install_missing
+	@missing=""; for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
-	  echo "make deps: installing Debian packages:$$missing"; \
+	  echo "make $@: installing Debian packages:$$missing"; \
 	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing; \
 	else \
-	  echo "make deps: all Debian packages present"; \
+	  echo "make $@: all Debian packages present"; \
 	fi
+endef
+
+deps:
+	$(call install_missing,$(DEBIAN_PACKAGES))
+
+deps-test:
+	$(call install_missing,$(DEBIAN_PACKAGES) $(DEBIAN_TEST_PACKAGES))
 
 $(BUILD)/CMakeCache.txt: | deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
@@ -59,7 +71,7 @@ build: deps $(BUILD)/CMakeCache.txt
 build-cli: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS) --target slipwalk
 
-test: build
+test: deps-test build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # Exits 1 when a sweep point failed (listed by study and kind), after writing everything else.
@@ -74,7 +86,7 @@ reproduce-quick: build-cli
 # The built report as a reader sees it, in headless Chromium (reports/site/check_pages.py):
 # images load, nothing is wider than the page, no text below 8 pt; screenshots in reports/out/screens.
 .PHONY: report-check
-report-check: reproduce
+report-check: deps-test reproduce
 	/usr/bin/python3 reports/site/check_pages.py reports/out
 
 bench: build
