@@ -133,6 +133,12 @@ def main():
         "accel_opposite_fraction": float(np.mean(opposite)),
         "accel_intervals": int(opposite.size),
         "max_com_accel_g": max_com_acc_g,
+        # Friction alone moves the CoM (the actuator force is internal), so |c̈| ≤ μg: the
+        # bound's check, None when the trace breaks it (finite differences: 1e-6 relative).
+        "com_accel_within_mu_g": max_com_acc_g if max_com_acc_g <= params["mu"] * (1 + 1e-6)
+        else None,
+        "com_accel_within_mu_g_reason": None if max_com_acc_g <= params["mu"] * (1 + 1e-6)
+        else f"max |c̈| = {max_com_acc_g:.6g} g exceeds μg = {params['mu']:.6g} g",
         "rows": tr.n,
     }
     c.write_values(args.out, NAME, values)

@@ -157,6 +157,40 @@ def scaling(t: c.Table, values: dict, axes) -> None:
         values.update(ps.cold_speedup(None))
 
 
+# How far the wall-clock overhead at M threads on fewer cores may sit from what time-sharing
+# alone predicts, and how much more work than one thread's the threads may do, for the excess to
+# count as the machine's (threads waiting for a core) rather than the algorithm's.
+OVERSUBSCRIBED_REL_TOL = 0.2
+OVERSUBSCRIBED_MAX_WORK = 1.2
+
+
+def oversubscription(values: dict, cores: int, Ms, m: int) -> None:
+    """At m threads on fewer cores, time-sharing alone predicts overhead_at_cores × m / cores;
+    it explains the measured overhead only when the two agree to OVERSUBSCRIBED_REL_TOL and the
+    threads did no more work (CPU time) than one thread by OVERSUBSCRIBED_MAX_WORK."""
+    key = f"oversubscription_explains_{m}"
+    values.update({f"overhead_seq_{m}_predicted": None, f"cpu_overhead_{m}_median": None,
+                   f"overhead_seq_{m}_rel_to_predicted": None, key: None,
+                   "oversubscribed_rel_tol": OVERSUBSCRIBED_REL_TOL,
+                   "oversubscribed_max_work": OVERSUBSCRIBED_MAX_WORK})
+    if m not in set(Ms.tolist()) or not cores or cores >= m:
+        values[key + "_reason"] = f"not oversubscribed: {cores} cores, {m} threads"
+        return
+    predicted = values["overhead_at_cores"] * m / cores
+    work = values["cpu_overhead_median"][list(Ms).index(m)]
+    measured = values[f"overhead_seq_{m}_median"]
+    values[f"overhead_seq_{m}_predicted"] = predicted
+    values[f"cpu_overhead_{m}_median"] = work
+    rel = abs(measured / predicted - 1.0)
+    values[f"overhead_seq_{m}_rel_to_predicted"] = rel
+    ok = rel <= OVERSUBSCRIBED_REL_TOL and work <= OVERSUBSCRIBED_MAX_WORK
+    values[key] = predicted if ok else None
+    values[key + "_reason"] = None if ok else (
+        f"measured {measured:.3g} against {predicted:.3g} predicted by time-sharing "
+        f"(off by {rel:.0%}, allowed {OVERSUBSCRIBED_REL_TOL:.0%}), work ×{work:.3g} "
+        f"(allowed {OVERSUBSCRIBED_MAX_WORK})")
+
+
 def parallel(t: c.Table, side: dict, values: dict, ax) -> None:
     cores = int(side.get("provenance", {}).get("machine", {}).get("logical_cores", 0) or 0)
     load = side.get("provenance", {}).get("machine", {}).get("load_average_1min")
@@ -200,6 +234,7 @@ def parallel(t: c.Table, side: dict, values: dict, ax) -> None:
     q_cpu = [pct(cpu[M == m] / base_cpu) for m in Ms]
     values["cpu_overhead_median"] = [q[2] for q in q_cpu]
     values["cpu_overhead_at_cores"] = q_cpu[at - 1][2]
+    oversubscription(values, cores, Ms, 4)
     values["prefix_product_ok"] = bool(values["scan_max_diff"] <= 1e-12 and values["deterministic"]
                                        and values["product_gain_at_cores"] > 1.0)
     values["prefix_product_exact"] = bool(values["scan_max_diff"] <= 1e-12 and values["deterministic"])

@@ -532,7 +532,7 @@ def main(argv: list[str] | None = None) -> int:
         print("check_pages.py: Chromium not found"
               + (f" at {args.chromium}" if args.chromium else
                  f" (looked for {', '.join(CHROMIUM_NAMES)} on PATH)")
-              + "; install the Debian package `chromium` (`make deps` does)", file=sys.stderr)
+              + "; install the Debian package `chromium` (`make deps-test` does)", file=sys.stderr)
         return 2
     args.screens = args.screens or out / "screens"
     args.screens.mkdir(parents=True, exist_ok=True)

@@ -18,7 +18,8 @@ from pathlib import Path
 import markdown
 
 import registry as reg
-from ledger import EXPLAINED, TEMPLATE, VERDICT_CLASS, Values, fmt_value, render
+from coverage import coverage_html
+from ledger import CAUSE_UNKNOWN, EXPLAINED, TEMPLATE, VERDICT_CLASS, Values, fmt_value, render
 
 # The project's top-level folders (DESIGN.md): a path recorded on another machine is shown from
 # the last of these it passes through, never as that machine's absolute path.
@@ -65,6 +66,7 @@ tr.bad td,td.bad{background:#fde8e8}
 .v.bad{background:#f7d4d4;color:#7a1515}
 .v.nodata{background:#e2e2f2;color:#333366}
 .v.notcovered{background:#e6e6e6;color:#4a4a4a}
+.v.own{border:1px dashed currentColor;font-style:italic}
 .small{font-size:.85em;color:#555}
 .regen{font-size:.85em;color:#555;margin:6px 0 0}
 .regen code{white-space:pre-wrap;overflow-wrap:anywhere}
@@ -98,6 +100,19 @@ def esc(x) -> str:
 
 def verdict_badge(v: str) -> str:
     return f"<span class='v {VERDICT_CLASS.get(v, 'bad')}'>{esc(v)}</span>"
+
+
+# A check of our own judges our implementation, not a statement of the thesis: its badge says so
+# in words and in its outline, wherever an entry is shown (the counts keep one column per verdict).
+OWN_CHECK_WORDS = {"reproduced": "holds", EXPLAINED: "fails — explained",
+                   CAUSE_UNKNOWN: "fails — cause unknown"}
+
+
+def claim_badge(cl: dict, v: str) -> str:
+    if not reg.is_own_check(cl):
+        return verdict_badge(v)
+    return (f"<span class='v own {VERDICT_CLASS.get(v, 'bad')}' title='{esc(v)}'>our check: "
+            f"{esc(OWN_CHECK_WORDS.get(v, v))}</span>")
 
 
 def thesis_text(v) -> str:
@@ -242,7 +257,7 @@ def ledger_rows(b: Build, claims: list[dict], with_thesis: bool) -> str:
             f"data-chapter='{esc(b.chapter_of(cl) or '—')}'><td>{esc(cl['id'])}</td>"
             f"<td>{esc(cl.get('section', ''))}</td>"
             f"<td>{esc(render(cl.get('statement', ''), b.values))}</td>{thesis}"
-            f"<td>{ours_cell(cl, r)}</td><td>{verdict_badge(r['verdict'])}</td>"
+            f"<td>{ours_cell(cl, r)}</td><td>{claim_badge(cl, r['verdict'])}</td>"
             f"<td>{claim_notes(cl, r, b.values)}</td></tr>")
     return "\n".join(out)
 
@@ -261,7 +276,8 @@ def short_claims_table(b: Build, claims: list[dict]) -> str:
         cls = "bad" if r["verdict"] == "not measured" else ""
         rows.append(f"<tr class='{cls}'><td><a href='ledger.html#claim-{esc(cl['id'])}'>"
                     f"{esc(cl['id'])}</a></td><td>{esc(thesis_text(cl.get('thesis', '')))}</td>"
-                    f"<td>{esc(fmt_value(r['ours']))}</td><td>{verdict_badge(r['verdict'])}</td></tr>")
+                    f"<td>{esc(fmt_value(r['ours']))}</td><td>{claim_badge(cl, r['verdict'])}</td>"
+                    "</tr>")
     return ("<div class='scroll'><table><thead><tr><th>claim</th><th>thesis</th><th>ours</th>"
             "<th>verdict</th></tr></thead><tbody>" + "".join(rows) + "</tbody></table></div>")
 
@@ -524,6 +540,8 @@ def block_html(b: Build, page: reg.Page, block: reg.Block, figures: list[reg.Fig
         return provenance_block(b)
     if name == "outcomes":
         return outcomes_block(b)
+    if name == "coverage":
+        return coverage_html(b.claims)
     raise ValueError(f"block {name} has no renderer")  # registry.BLOCKS and this list agree
 
 

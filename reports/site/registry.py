@@ -18,6 +18,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import coverage
 from ledger import TEMPLATE
 
 # ---------------------------------------------------------------------------------------------
@@ -36,10 +37,11 @@ RESERVED_SCRIPTS = {"claims", "model"}
 # chapters x verdicts (chapter=N: one chapter's counts); claims: the ledger's entries of one
 # chapter; ledger: the whole claims ledger, filterable; own-checks: the checks of our own
 # (claims whose thesis is "not given"); pages: a link to every page; provenance: where every
-# data file and this build come from.
+# data file and this build come from; outcomes: what became of every sweep point; coverage: the
+# sections the ledger measures and the entries it cannot (coverage.py).
 BLOCKS = {"figures": {"section"}, "figure": {"script"}, "verdicts": {"chapter"},
           "claims": {"chapter"}, "ledger": set(), "own-checks": set(), "pages": set(),
-          "provenance": set(), "outcomes": set()}
+          "provenance": set(), "outcomes": set(), "coverage": set()}
 REQUIRED_ARGS = {"figure": {"script"}, "claims": {"chapter"}}
 MARKER = re.compile(r"^\{\{\s*([a-z][a-z-]*)((?:\s+[a-z]+=[^\s{}=]+)*)\s*\}\}\s*$")
 
@@ -356,7 +358,7 @@ def check_scripts(registry: Registry, figures_dir: Path) -> list[str]:
 
 def check_pages(registry: Registry, pages_dir: Path) -> list[str]:
     """Every figure's page exists, every page's prose exists, its markers parse and place every
-    figure of the page exactly once."""
+    figure of the page exactly once, and it states no coverage or count in its own words."""
     problems = [f"{registry.path}: [[figure]] {f.script}: page '{f.page}' is not a [[page]]"
                 for f in registry.figures if registry.page(f.page) is None]
     for page in registry.pages:
@@ -365,7 +367,7 @@ def check_pages(registry: Registry, pages_dir: Path) -> list[str]:
             problems.append(f"{registry.path}: [[page]] {page.id}: prose {where} does not exist")
             continue
         parts, bad = parse_prose(text, where)
-        problems += bad
+        problems += bad + coverage.hand_written(text, where)
         problems += place_figures(registry, page, parts, where)[1]
     return problems
 

@@ -71,7 +71,7 @@ class CheckPages(unittest.TestCase):
     def setUpClass(cls):
         if check_pages.find_chromium(None) is None:
             raise AssertionError("Chromium not found: install the Debian package `chromium` "
-                                 "(`make deps`); the page check cannot run without it")
+                                 "(`make deps-test`); the page check cannot run without it")
         cls.tmp = tempfile.TemporaryDirectory(prefix="check_pages_test.")
         root = Path(cls.tmp.name)
 

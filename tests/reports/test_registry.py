@@ -269,6 +269,16 @@ class RegistryChecks(unittest.TestCase):
         self.p.page("ch2.md", "{{figures}}\n\n{{figurez}}\n")
         self.assertFails(self.p.build(), "ch2.md:3: unknown block {{figurez}}")
 
+    def test_a_page_stating_coverage_by_hand_fails_and_the_block_says_it_from_the_ledger(self):
+        self.p.page("index.md", "Not covered yet: §5.3.\n\n{{verdicts}}\n")
+        self.assertFails(self.p.build(), "index.md:1: coverage or a count written by hand")
+        self.p.page("index.md", "Summary.\n\n{{coverage}}\n\n{{pages}}\n")
+        proc = self.p.build()
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        said = re.sub(r"<[^>]*>", "", (self.p.out / "index.html").read_text())
+        self.assertIn("Of the ledger's 2 entries, 2 measure statements of chapter 2 (§2.1) and "
+                      "chapter 5 (§5.2)", said)
+
     def test_a_figure_on_a_page_that_is_not_registered_fails(self):
         self.p.registry(REGISTRY.replace('page = "ch2"\nstudy = "s1"\nwide', 'page = "ch9"\nstudy = "s1"\nwide'))
         self.assertFails(self.p.build(), "[[figure]] fb: page 'ch9' is not a [[page]]")
