@@ -93,13 +93,9 @@ void validate_at_keys(const Reader& r, const Params& p, std::string_view force_k
   }
 }
 
-/// Params, the force and the method of an inchworm point; throws InputError naming the key.
-InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& base = {}) {
-  InchwormInputs in;
-  in.p = base;
-  Params& p = in.p;
-  // Each value in its own range first (inchworm::ranges, the command line's table), at its own
-  // place: the force range below is computed from them.
+/// The model's parameters of a point, each in its own range (inchworm::ranges, the command
+/// line's table) at its own place; the ratio constraints are checked once the force is known.
+void read_params(const Reader& r, Params& p) {
   namespace ranges = inchworm::ranges;
   p.m = r.number("m", p.m, ranges::kMass);
   p.M = r.number("M", p.M, ranges::kMass);
@@ -110,6 +106,25 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
   if (r.has("mu_s")) {  // absent: NaN, meaning mu_s = mu
     p.mu_s = r.number("mu_s", p.mu_s, ranges::kFriction);
   }
+}
+
+/// The ratio constraints (M > m, L_max > L_min, mu_s >= mu): validate() with the largest
+/// admissible force checks everything but the force, naming `force_key` for nothing else.
+void validate_but_force(const Reader& r, const Params& p, std::string_view force_key) {
+  Params largest_force = p;
+  largest_force.F = inchworm::ranges::kForce.hi;
+  validate_at_keys(r, largest_force, force_key);
+}
+
+void read_solver(const Reader& r, InchwormInputs& in, bool solver_keys);
+
+/// Params, the force and the method of an inchworm point; throws InputError naming the key.
+InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& base = {}) {
+  InchwormInputs in;
+  in.p = base;
+  Params& p = in.p;
+  // The parameters first: the force range below is computed from them.
+  read_params(r, p);
 
   int given = 0;
   for (auto key : {"F", "F_frac", "f_tilde"}) {
@@ -127,11 +142,8 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
       r.fail(key, "only used with F_frac");
     }
   }
-  // The ratio constraints (M > m, L_max > L_min, mu_s >= mu) before the force range is built
-  // from them: validate() with the largest admissible force checks everything but the force.
-  Params largest_force = p;
-  largest_force.F = inchworm::ranges::kForce.hi;
-  validate_at_keys(r, largest_force, in.force_key);
+  // The ratio constraints before the force range is built from them.
+  validate_but_force(r, p, in.force_key);
   force_range(r, in);
   if (in.force_key == "F") {
     p.F = *r.number("F");
@@ -161,7 +173,13 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
     p.F = in.F_lo + frac * (in.F_max - in.F_lo);
   }
   validate_at_keys(r, p, in.force_key);
+  read_solver(r, in, solver_keys);
+  return in;
+}
 
+/// The method of a point and, with `solver_keys`, its solver's settings (rtol, stop, estimator,
+/// budgets, event location, fixed step).
+void read_solver(const Reader& r, InchwormInputs& in, bool solver_keys) {
   if (const auto name = r.text("method")) {
     const auto m = inchworm::parse_method(*name);
     if (!m) {
@@ -170,7 +188,7 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
     in.method = *m;
   }
   if (!solver_keys) {
-    return in;
+    return;
   }
   in.opt.rtol = r.number("rtol", in.opt.rtol);
   if (!inchworm::ranges::kRtol.contains(in.opt.rtol)) {
@@ -233,7 +251,6 @@ InchwormInputs read_inchworm(const Reader& r, bool solver_keys, const Params& ba
                  *times + "'");
     }
   }
-  return in;
 }
 
 double f_tilde_of(const Params& p) { return p.F / (p.mu * p.M * p.g); }
@@ -537,6 +554,145 @@ Rows<ConvergenceRow> run_convergence(const Point& point) {
   return out;
 }
 
+// --- inchworm_force_grid ------------------------------------------------------------------------
+
+// One point is one μ and one solver on a force grid the same for every μ, in newtons: the
+// forces k F_step (k = 1, 2, ...) up to F_end, keeping those above μ_s m g, where the inchworm
+// moves. A thesis that sampled forces on such a grid for each μ (rather than from μMg, as our
+// regression study does) is what studies/ch2_inchworm/forensics.toml searches for.
+const std::vector<std::string_view> kForceGridKeys =
+    keys({kParamKeys,
+          {"F_step", "F_end", "method", "rtol", "stop", "estimator", "max_strokes", "target",
+           "event_tol", "h", "max_steps"}});
+
+/// Forces a point may hold: a grid finer than this is a typo, not a study.
+constexpr long long kMaxGridForces = 100'000;
+
+struct ForceGridInputs {
+  InchwormInputs in;
+  double F_step = 0.0;  ///< N
+  double F_end = 0.0;   ///< N
+  long long k_first = 1;
+  long long k_last = 0;
+};
+
+ForceGridInputs read_force_grid(const Point& point) {
+  const Reader r(point, "inchworm_force_grid", kForceGridKeys);
+  ForceGridInputs g;
+  Params& p = g.in.p;
+  read_params(r, p);
+  validate_but_force(r, p, "F_step");
+  for (auto key : {"F_step", "F_end"}) {
+    if (!r.has(key)) {
+      r.fail(key, "required (the grid's spacing and its largest force, N)");
+    }
+  }
+  g.F_step = *r.number("F_step");
+  g.F_end = *r.number("F_end");
+  if (!(g.F_step > 0.0)) {
+    r.fail("F_step", "must be positive, got " + core::format_double(g.F_step));
+  }
+  if (!inchworm::ranges::kForce.contains(g.F_end)) {
+    r.fail("F_end", "must be in " + inchworm::ranges::kForce.describe() + ", got " +
+                        core::format_double(g.F_end));
+  }
+  // The first multiple of the step above μ_s m g, where m starts to move (eq. 2.7).
+  const double moves = p.static_mu() * p.m * p.g;
+  g.k_first = static_cast<long long>(std::floor(moves / g.F_step)) + 1;
+  g.k_last = static_cast<long long>(std::floor(g.F_end / g.F_step * (1.0 + 1e-12)));
+  if (g.k_last < g.k_first) {
+    r.fail("F_end", "F_end = " + core::format_double(g.F_end) +
+                        " N leaves no force of the grid above mu_s m g = " +
+                        core::format_double(moves) + " N");
+  }
+  if (g.k_last - g.k_first + 1 > kMaxGridForces) {
+    r.fail("F_step", "the grid holds " + std::to_string(g.k_last - g.k_first + 1) +
+                         " forces, more than " + std::to_string(kMaxGridForces));
+  }
+  p.F = static_cast<double>(g.k_first) * g.F_step;
+  validate_at_keys(r, p, "F_step");
+  read_solver(r, g.in, true);
+  return g;
+}
+
+/// One row per force of the grid.
+struct ForceGridRow {
+  long long id = 0;
+  double mu = 0.0;
+  double F = 0.0;
+  double f_tilde = 0.0;
+  std::string method;
+  std::string stop;
+  std::string estimator;
+  double rtol = 0.0;
+  double g = 0.0;
+  double m = 0.0;
+  double M = 0.0;
+  double L_min = 0.0;
+  double L_max = 0.0;
+  double v_ss = 0.0;
+  long long regime = 0;
+  long long strokes = 0;
+  std::string status;
+
+  static std::vector<Column<ForceGridRow>> columns() {
+    using R = ForceGridRow;
+    return {value("id", &R::id),
+            value("mu", &R::mu),
+            value("F", &R::F, "N"),
+            value("f_tilde", &R::f_tilde),
+            value("method", &R::method),
+            value("stop", &R::stop),
+            value("estimator", &R::estimator),
+            value("rtol", &R::rtol),
+            value("g", &R::g, "m/s^2"),
+            value("m", &R::m, "kg"),
+            value("M", &R::M, "kg"),
+            value("L_min", &R::L_min, "m"),
+            value("L_max", &R::L_max, "m"),
+            value("v_ss", &R::v_ss, "m/s"),
+            value("regime", &R::regime),
+            value("strokes", &R::strokes),
+            value("status", &R::status)};
+  }
+};
+
+Rows<ForceGridRow> run_force_grid(const Point& point) {
+  const ForceGridInputs g = read_force_grid(point);
+  Params p = g.in.p;
+  Rows<ForceGridRow> out;
+  out.rows.reserve(static_cast<std::size_t>(g.k_last - g.k_first + 1));
+  for (long long k = g.k_first; k <= g.k_last; ++k) {
+    p.F = static_cast<double>(k) * g.F_step;
+    const inchworm::VssResult s = inchworm::solve_vss(p, g.in.method, g.in.opt);
+    ForceGridRow row;
+    row.id = point.id;
+    row.mu = p.mu;
+    row.F = p.F;
+    row.f_tilde = f_tilde_of(p);
+    row.method = inchworm::method_name(g.in.method);
+    row.stop = g.in.opt.stop == inchworm::StopRule::kEstimatedError ? "estimate" : "difference";
+    row.estimator = g.in.opt.estimator == inchworm::Estimator::kCycleAverage ? "cycle" : "running";
+    row.rtol = g.in.opt.rtol;
+    row.g = p.g;
+    row.m = p.m;
+    row.M = p.M;
+    row.L_min = p.L_min;
+    row.L_max = p.L_max;
+    row.v_ss = s.converged ? s.v_ss : std::nan("");
+    row.regime = static_cast<long long>(s.converged ? s.regime : inchworm::regime_of(p));
+    row.strokes = s.strokes;
+    row.status = vss_status(s);
+    out.rows.push_back(std::move(row));
+    if (!s.converged && out.message.empty()) {
+      out.failed = out.failed || s.budget == inchworm::Budget::kNone;
+      out.at_budget = s.budget != inchworm::Budget::kNone;
+      out.message = "F = " + core::format_double(p.F) + " N: " + s.message;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<PointKind> inchworm_kinds() {
@@ -549,7 +705,12 @@ std::vector<PointKind> inchworm_kinds() {
               "inchworm_convergence",
               "cycle averages and running mean from rest against the closed form (one row per "
               "cycle)",
-              Timed::kNo, [](const Point& p) { (void)read_convergence(p); }, run_convergence)};
+              Timed::kNo, [](const Point& p) { (void)read_convergence(p); }, run_convergence),
+          make_point_kind<ForceGridRow>(
+              "inchworm_force_grid",
+              "v_ss on a force grid in newtons shared by every mu (k F_step up to F_end, above "
+              "mu_s m g; one row per force)",
+              Timed::kNo, [](const Point& p) { (void)read_force_grid(p); }, run_force_grid)};
 }
 
 }  // namespace slipwalk::sweeps::points

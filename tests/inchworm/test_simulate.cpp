@@ -3,6 +3,8 @@
 // slow convergence, strong actuators).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "events/exact_backend.hpp"
 #include "inchworm/closed_form.hpp"
 #include "inchworm/simulate.hpp"
@@ -76,6 +78,34 @@ TEST(Simulation, ThesisRunningMeanProtocolLeavesAVisibleGap) {
   EXPECT_GT(rel_diff(running.v_ss, exact), 1e-3);
   EXPECT_LT(running.v_ss, exact);  // the transient from rest is slower than the limit cycle
   EXPECT_LT(rel_diff(last.v_ss, exact), 1e-4);
+}
+
+// The thesis' protocol (§2.2.2: from rest, the running mean, stopped when two consecutive
+// means differ by less than a tolerance) is a consistent estimator of the limit cycle's speed:
+// the running mean's error decays like 1/N and the consecutive differences like 1/N², so the
+// error left at stopping shrinks like the square root of the tolerance and goes to zero with it.
+TEST(Simulation, TheThesisProtocolConvergesToTheClosedFormAsItsToleranceGoesToZero) {
+  for (const double mu : {1.0, 0.2}) {
+    Params p;
+    p.mu = mu;
+    p.F = 45.0 * mu;
+    const double exact = steady_state_closed_form(p).v_ss;
+    double previous = 1.0;
+    for (const double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
+      SimulationOptions thesis;
+      thesis.target = tol;
+      thesis.stop = StopRule::kConsecutiveDifference;
+      thesis.estimator = Estimator::kRunningMean;
+      thesis.max_strokes = 100'000'000;
+      const SimulationSummary s = simulate_exact(p, thesis);
+      ASSERT_TRUE(s.converged) << "mu = " << mu << ", tol = " << tol;
+      const double gap = rel_diff(s.v_ss, exact);
+      EXPECT_LT(gap, previous / 5.0) << "mu = " << mu << ", tol = " << tol;
+      EXPECT_LT(gap, 30.0 * std::sqrt(tol)) << "mu = " << mu << ", tol = " << tol;
+      previous = gap;
+    }
+    EXPECT_LT(previous, 1e-4) << "mu = " << mu;
+  }
 }
 
 TEST(Simulation, IsDeterministic) {

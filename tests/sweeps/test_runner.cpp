@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "events/exact_backend.hpp"
 #include "inchworm/simulate.hpp"
+#include "inchworm/vss.hpp"
 #include "sweeps/engine/job.hpp"
 #include "sweeps/engine/runner.hpp"
 #include "sweeps/engine/spec.hpp"
@@ -475,6 +476,57 @@ cycles = 30
   so.estimator = inchworm::Estimator::kRunningMean;
   const auto running = inchworm::steady_state_by_simulation(p, backend2, so);
   EXPECT_EQ(std::get<double>(r.rows.back()[6]), running.v_ss);
+}
+
+/// The force grid kind: the closed form at every multiple of the step above mu m g, the same
+/// forces for every mu.
+TEST(Runner, ForceGridRowsAreTheClosedFormAtTheStepsMultiplesAboveMuMg) {
+  const PreparedSweep sweep = prepared(R"(study = "test"
+name = "grid"
+kind = "inchworm_force_grid"
+[params]
+F_step = 2.5
+F_end = 20.0
+method = "exact"
+[axes]
+mu = [0.5, 0.1]
+)");
+  ASSERT_EQ(sweep.points.size(), 2U);
+  for (const Point& point : sweep.points) {
+    const PointResult r = sweep.kind->run(point);
+    ASSERT_FALSE(r.failed) << r.message;
+    inchworm::Params p;
+    p.mu = std::get<double>(r.rows.front()[1]);
+    // mu m g = 4.905 N at mu = 0.5 (from 5 N), 0.981 N at mu = 0.1 (from 2.5 N)
+    const double first = p.mu > 0.3 ? 5.0 : 2.5;
+    ASSERT_EQ(r.rows.size(), static_cast<std::size_t>((20.0 - first) / 2.5) + 1);
+    for (std::size_t i = 0; i < r.rows.size(); ++i) {
+      p.F = first + 2.5 * static_cast<double>(i);
+      EXPECT_EQ(std::get<double>(r.rows[i][2]), p.F);
+      const inchworm::VssResult exact = inchworm::solve_vss(p, inchworm::Method::kExact);
+      EXPECT_EQ(std::get<double>(r.rows[i][13]), exact.v_ss) << "F = " << p.F;
+      EXPECT_EQ(std::get<long long>(r.rows[i][14]), static_cast<long long>(exact.regime));
+      EXPECT_EQ(std::get<std::string>(r.rows[i][16]), "converged");
+    }
+  }
+}
+
+TEST(Runner, AForceGridWithNoForceAboveMuMgIsRefusedAtItsEnd) {
+  const std::string spec = R"(study = "test"
+name = "grid"
+kind = "inchworm_force_grid"
+[params]
+F_step = 1.0
+F_end = 4.0
+mu = 0.5
+)";
+  try {
+    (void)prepared(spec);
+    FAIL() << "accepted a grid with no force above mu m g";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("F_end"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("mu_s m g"), std::string::npos) << e.what();
+  }
 }
 
 // --- the command line ---------------------------------------------------------------------------

@@ -1,0 +1,277 @@
+#!/usr/bin/python3
+"""Chapter 2 forensics: the unstated settings under which the thesis' regression numbers appear.
+
+Input: DATA/ch2_inchworm/forensics.csv (inchworm_force_grid rows: v_ss on forces k·0.5 N up to
+100 N for μ = 0.05..1, one block per variant of the model or protocol), DATA/ch2_inchworm/
+fig2_3.csv (Fig. 2.3's simulation points, for the R² of its regime lines) and the search's candidate
+choices, data/thesis/forensics.toml (force grid start, end and step; sets of μ; the groups of the
+thesis' numbers by ledger entry). For every setting (variant × grid × set of μ) the regressions
+are computed as the thesis describes them (reports/plotting/forensics_search.py) and scored
+against each group: a group is explained only by one setting bringing all its numbers within
+their entries' tolerances. Output: OUT/forensics.png, OUT/forensics_table.html,
+OUT/values/forensics.json.
+"""
+from __future__ import annotations
+
+import html
+import math
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
+import common as c  # noqa: E402
+import forensics_search as fs  # noqa: E402
+
+NAME = "forensics"
+SEARCH = c.REPO / "data" / "thesis" / "forensics.toml"
+PRINTED = {"g": c.G, "m": 1.0, "M": c.M, "L_min": 0.02, "L_max": c.L_MAX}
+UNITS = {"g": "m/s²", "m": "kg", "M": "kg", "L_min": "m", "L_max": "m"}
+# Our own sampling for comparison: the regression study's range (from μMg to 5Mg, 20 μ).
+OURS = fs.Grid("muMg", 0.5, 73.5)
+OURS_MU_SET = "0.05 to 1 in steps of 0.05"
+
+
+def variant_label(t: c.Table, i: int) -> str:
+    """A block's rows named by what they change against the model and method as printed."""
+    method = str(t["method"][i])
+    if method == "exact":
+        head = "closed form"
+    else:
+        est = "running mean" if t["estimator"][i] == "running" else "last cycle"
+        head = (f"thesis protocol ({est}, stop at {t['rtol'][i]:g})"
+                if t["stop"][i] == "difference" else f"simulation ({method}, rtol {t['rtol'][i]:g})")
+    changed = [f"{k} = {float(t[k][i]):g} {UNITS[k]}" for k, v in PRINTED.items()
+               if not math.isclose(float(t[k][i]), v, rel_tol=1e-12)]
+    return head + (", " + ", ".join(changed) if changed else ", as printed")
+
+
+def load_variants(t: c.Table) -> dict[str, fs.Variant]:
+    labels = [variant_label(t, i) for i in range(t.n)]
+    variants: dict[str, fs.Variant] = {}
+    for i, label in enumerate(labels):
+        if label not in variants:
+            variants[label] = fs.Variant(label, float(t["m"][i]), float(t["M"][i]),
+                                         float(t["g"][i]), float(t["L_max"][i]))
+    labels = np.array(labels, dtype=object)
+    for label, v in variants.items():
+        rows = labels == label
+        for mu in np.unique(t["mu"][rows]):
+            s = rows & (t["mu"] == mu)
+            o = np.argsort(t["F"][s])
+            v.by_mu[round(float(mu), 12)] = (t["F"][s][o], t["v_ss"][s][o])
+    return variants
+
+
+def load_groups(cfg: dict, regime_starts: bool) -> list[fs.Group]:
+    """The groups searched over force grids, or (regime_starts) over Fig. 2.3's regime starts."""
+    ledger = {cl["id"]: cl for cl in c.load_ledger().get("claim", [])}
+    groups = []
+    for g in cfg["group"]:
+        if ("regime_I_start" in g) != regime_starts:
+            continue
+        missing = [cid for cid in g["claims"] if cid not in ledger or "tol" not in ledger[cid]]
+        if missing:
+            c.fail(f"{SEARCH}: group {g['name']}: no ledger entry with a tol for {missing}")
+        groups.append(fs.Group(
+            g["name"], g["title"], g["claims"],
+            {k: float(ledger[cid]["thesis"]) for cid, k in g["claims"].items()},
+            {k: float(ledger[cid]["tol"]) for cid, k in g["claims"].items()}))
+    return groups
+
+
+def mu_sets_on(cfg: dict, variants: dict[str, fs.Variant]) -> dict[str, list[float]]:
+    """Each set of μ as the sweep's values (a set naming a μ the sweep lacks is an error)."""
+    have = sorted(set.intersection(*(set(v.by_mu) for v in variants.values())))
+    out = {}
+    for name, mus in cfg["mu_sets"].items():
+        got = [next((h for h in have if abs(h - m) < 1e-9), None) for m in mus]
+        if None in got:
+            c.fail(f"{SEARCH}: mu set '{name}' names μ = "
+                   f"{[m for m, g in zip(mus, got) if g is None]} that the sweep did not run")
+        out[name] = got
+    return out
+
+
+def fig2_3_search(data: Path, cfg: dict, group: fs.Group) -> fs.Found:
+    """Fig. 2.3's R² from our Fig. 2.3 simulation points, each regime from a fraction of its band."""
+    t = c.read_table(data, "fig2_3.csv", c.SWEEP_COLUMNS)
+    sim = (t["method"] == "analytic") & (t["converged"] == 1)
+    curves, bands = {}, {}
+    for mu, tag in ((1.0, "mu1"), (0.2, "mu0.2")):
+        s = sim & np.isclose(t["mu"], mu, rtol=0, atol=1e-12)
+        if np.count_nonzero(s) < 6:
+            c.fail(f"{t.path}: too few simulation rows at μ = {mu:g} for Fig. 2.3's lines")
+        o = np.argsort(t["F"][s])
+        curves[tag] = (t["F"][s][o], t["v_ss"][s][o])
+        bands[tag] = (mu * c.m * c.G, mu * c.M * c.G, float(np.max(t["F"][s])))
+    spec = next(g for g in cfg["group"] if g["name"] == group.name)
+    candidates = [fs.RegimeStart(a, b) for a in spec["regime_I_start"]
+                  for b in spec["regime_II_start"]]
+    found = fs.search_fig2_3(curves, bands, candidates, group)
+    # Ours: the whole of each band, as our Fig. 2.3 fits it.
+    found.ours = fs.fig2_3_numbers(curves, bands, fs.RegimeStart(0.0, 0.0))
+    found.n_settings = len(candidates)
+    return found
+
+
+def start_label(start) -> str:
+    return start if isinstance(start, str) else f"{start:g}"
+
+
+def heat(ax, found: fs.Found, cfg: dict, plt) -> None:
+    """The smallest distance (over steps and sets of μ) for each start and end of the grid, in
+    the variant of the group's best setting."""
+    starts, ends = cfg["grid"]["F_start"], cfg["grid"]["F_end"]
+    D = np.full((len(starts), len(ends)), np.inf)
+    for s, d in found.scores:
+        if s.variant != found.best.variant:
+            continue
+        i, j = starts.index(s.grid.start), ends.index(s.grid.end)
+        D[i, j] = min(D[i, j], d)
+    shown = np.log10(np.clip(D, 1e-2, 1e4))
+    im = ax.imshow(shown, origin="lower", aspect="auto", cmap="YlGnBu_r", vmin=-1, vmax=3)
+    ax.grid(False)
+    for (i, j), d in np.ndenumerate(D):
+        if d <= 1.0:
+            ax.text(j, i, "✓", ha="center", va="center", fontsize=9, color="white")
+    ax.set_xticks(range(len(ends)), [f"{e:g}" for e in ends], rotation=60)
+    ax.set_yticks(range(len(starts)), [start_label(s) for s in starts])
+    ax.set_xlabel("grid ends at F [N]")
+    ax.set_ylabel("grid starts at F [N]")
+    ax.set_title(f"{found.group.title}\nbest distance per (start, end); ✓ = all within tolerance",
+                 fontsize=9)
+    plt.colorbar(im, ax=ax, label="log₁₀ distance (1 = at the tolerance)")
+
+
+def by_variant(found: list[fs.Found], variants: list[str]) -> dict[str, list[float]]:
+    best = {f.group.name: {v: math.inf for v in variants} for f in found}
+    for f in found:
+        for s, d in f.scores:
+            best[f.group.name][s.variant] = min(best[f.group.name][s.variant], d)
+    return {g: [best[g][v] for v in variants] for g in best}
+
+
+def table(found: list[fs.Found], ours: dict, mu_sets: dict, variants: list[str],
+          best_by_variant: dict) -> str:
+    out = []
+    for f in found:
+        g = f.group
+        out.append(f"<h4>{html.escape(g.title)}</h4><p class='small'>Best joint setting: "
+                   f"{html.escape(f.best.label(mu_sets)) if f.best else '—'} (distance "
+                   f"{c.fmt(f.best_distance, 3)}; {'within every tolerance' if f.joint else 'not within every tolerance'}).</p>")
+        out.append("<div class='scroll'><table class='data'><thead><tr><th>entry</th><th>thesis</th>"
+                   "<th>tolerance</th><th>ours, as our study samples</th><th>best joint setting</th>"
+                   "<th>each number's own best (a setting per number: not an explanation)</th>"
+                   "</tr></thead><tbody>")
+        for cid, key in g.numbers.items():
+            d, s = f.per_number.get(key, (math.inf, None))
+            out.append(f"<tr><td>{html.escape(cid)}</td><td>{c.fmt(g.thesis[key], 4)}</td>"
+                       f"<td>{c.fmt(g.tol[key], 2)}</td><td>{c.fmt(ours.get(key), 4)}</td>"
+                       f"<td>{c.fmt(f.best_numbers.get(key), 4)}</td>"
+                       f"<td>distance {c.fmt(d, 2)}</td></tr>")
+        out.append("</tbody></table></div>")
+        if g.name not in best_by_variant:
+            continue
+        rows = "".join(f"<tr><td>{html.escape(v)}</td><td>{c.fmt(d, 3)}</td>"
+                       f"<td>{'yes' if d <= 1 else 'ruled out'}</td></tr>"
+                       for v, d in zip(variants, best_by_variant[g.name]))
+        out.append("<details><summary>best distance by variant of the model or protocol</summary>"
+                   "<table class='data'><thead><tr><th>variant</th><th>best distance</th>"
+                   f"<th>reproduces the group</th></tr></thead><tbody>{rows}</tbody></table>"
+                   "</details>")
+    return "\n".join(out) + "\n"
+
+
+def main():
+    args = c.parse_args(__doc__.splitlines()[0])
+    plt = c.setup_matplotlib()
+    t = c.read_table(args.data, "forensics.csv", ["mu", "F", "method", "stop", "estimator", "rtol",
+                                                  "g", "m", "M", "L_min", "L_max", "v_ss",
+                                                  "status"])
+    if np.any(t["status"] != "converged"):
+        c.fail(f"{t.path}: {int(np.sum(t['status'] != 'converged'))} rows did not converge")
+    with open(SEARCH, "rb") as f:
+        cfg = tomllib.load(f)
+    variants = load_variants(t)
+    mu_sets = mu_sets_on(cfg, variants)
+    groups = load_groups(cfg, regime_starts=False)
+    eq = c.eq2_6_coefficients()
+    names = list(variants)
+    candidates = fs.settings(names, cfg["grid"]["F_start"], cfg["grid"]["F_end"],
+                             cfg["grid"]["F_step"], list(mu_sets))
+    t0 = time.process_time()
+    found = fs.search(variants, candidates, mu_sets, groups, eq)
+    search_s = time.process_time() - t0
+    printed = names[0]
+    ours = fs.numbers(fs.per_mu(variants[printed], OURS), mu_sets[OURS_MU_SET], eq)
+    best_by_variant = by_variant(found, names)
+    regime_found = [fig2_3_search(args.data, cfg, g) for g in load_groups(cfg, regime_starts=True)]
+
+    values: dict = {"n_settings": len(candidates), "n_variants": len(names), "variants": names,
+                    "search_cpu_s": search_s, "F_step_data": float(np.min(np.diff(np.unique(t["F"]))))}
+    for f in found + regime_found:
+        g = f.group.name
+        grid_group = any(f is x for x in found)
+        n = len(candidates) if grid_group else f.n_settings
+        mine = ours if grid_group else f.ours
+        values[f"{g}_n_settings"] = n
+        values[f"{g}_best_distance"] = f.best_distance
+        values[f"{g}_joint"] = f.joint
+        values[f"{g}_best_setting"] = f.best.label(mu_sets) if f.best else None
+        values[f"{g}_best_variant"] = f.best.variant if grid_group and f.best else None
+        values[f"{g}_per_number_max"] = max(d for d, _ in f.per_number.values())
+        values[f"{g}_per_number_only"] = f.per_number_only
+        values[f"{g}_settings_within"] = int(sum(1 for _, d in f.scores if d <= 1.0))
+        values[f"{g}_ours_distance"] = fs.distance(mine, f.group)[0]
+        for key in f.group.numbers.values():
+            values[f"{g}_{key}"] = f.best_numbers.get(key)
+            values[f"{g}_ours_{key}"] = mine.get(key)
+        if grid_group:
+            values[f"{g}_best_by_variant"] = best_by_variant[g]
+            values[f"{g}_ruled_out_variants"] = [v for v, d in zip(names, best_by_variant[g])
+                                                 if d > 1]
+        # The check behind an explanation: set only when one setting reproduces the group.
+        values[f"{g}_explained_by_setting"] = f.best_distance if f.joint else None
+        values[f"{g}_explained_by_setting_reason"] = None if f.joint else (
+            f"no setting of {n} brings every number within its tolerance (best "
+            f"{f.best_distance:.3g})")
+
+    # One setting for every group at once (the same simulations behind §2.3.1 and eq. 2.6?).
+    together = [max(ds) for ds in zip(*([d for _, d in f.scores] for f in found))]
+    i_best = int(np.argmin(together))
+    values["all_groups_best_distance"] = together[i_best]
+    values["all_groups_best_setting"] = found[0].scores[i_best][0].label(mu_sets)
+    values["all_groups_settings_within"] = int(sum(1 for d in together if d <= 1.0))
+
+    fig, axs = plt.subplots(1, len(found) + 1, figsize=(5.2 * (len(found) + 1), 4.8),
+                            width_ratios=[1] * len(found) + [0.8])
+    for ax, f in zip(axs, found):
+        if f.best is not None:
+            heat(ax, f, cfg, plt)
+    ax = axs[-1]
+    y = np.arange(len(names))
+    for i, f in enumerate(found):
+        d = np.clip(best_by_variant[f.group.name], 1e-2, 1e4)
+        ax.barh(y + (i - 0.5) * 0.35, d, height=0.35, color=c.CATEGORICAL[i],
+                label=f.group.name.replace("_", " "))
+    ax.axvline(1.0, color="0.3", lw=0.8, ls="--")
+    ax.set_xscale("log")
+    ax.set_yticks(y, names, fontsize=7)
+    ax.set_xlabel("best distance (1 = at the tolerance)")
+    ax.set_title("by variant of the model or protocol", fontsize=9)
+    ax.legend(loc="lower right", fontsize=7)
+    fig.tight_layout()
+    c.save_figure(fig, args.out, NAME)
+    c.atomic_write_text(args.out / "forensics_table.html",
+                        table(found, ours, mu_sets, names, best_by_variant)
+                        + table(regime_found, regime_found[0].ours if regime_found else {},
+                                mu_sets, [], {}))
+    c.write_values(args.out, NAME, values)
+
+
+if __name__ == "__main__":
+    main()
