@@ -118,6 +118,9 @@ def main():
         "mean_speed_last": final,
         "per_cycle_contraction": lam,
         "speed_limit_extrapolated": limit,
+        "closed_form_v_ss": c.closed_form(params["F"], params["mu"])["v_ss"],
+        "limit_rel_diff_closed_form": abs(limit / c.closed_form(params["F"], params["mu"])["v_ss"]
+                                          - 1) if limit else None,
         "rel_dev_from_limit_per_cycle": rel_dev,
         "rel_dev_cycle1": rel_dev[0],
         "rel_dev_cycle3": rel_dev[2] if len(rel_dev) > 2 else None,

@@ -73,13 +73,17 @@ def load_groups(cfg: dict, regime_starts: bool) -> list[fs.Group]:
     for g in cfg["group"]:
         if ("regime_I_start" in g) != regime_starts:
             continue
-        missing = [cid for cid in g["claims"] if cid not in ledger or "tol" not in ledger[cid]]
+        missing = [cid for cid in g["claims"] if cid not in ledger or not (
+            "tol" in ledger[cid] or ledger[cid].get("compare") in ("at_least", "at_most"))]
         if missing:
-            c.fail(f"{SEARCH}: group {g['name']}: no ledger entry with a tol for {missing}")
+            c.fail(f"{SEARCH}: group {g['name']}: no ledger entry with a tol or a bound for "
+                   f"{missing}")
         groups.append(fs.Group(
             g["name"], g["title"], g["claims"],
             {k: float(ledger[cid]["thesis"]) for cid, k in g["claims"].items()},
-            {k: float(ledger[cid]["tol"]) for cid, k in g["claims"].items()}))
+            {k: float(ledger[cid].get("tol", 0.0)) for cid, k in g["claims"].items()},
+            {k: ledger[cid]["compare"] if ledger[cid]["compare"] in ("at_least", "at_most")
+             else "abs" for cid, k in g["claims"].items()}))
     return groups
 
 
@@ -96,24 +100,45 @@ def mu_sets_on(cfg: dict, variants: dict[str, fs.Variant]) -> dict[str, list[flo
     return out
 
 
-def fig2_3_search(data: Path, cfg: dict, group: fs.Group) -> fs.Found:
-    """Fig. 2.3's R² from our Fig. 2.3 simulation points, each regime from a fraction of its band."""
-    t = c.read_table(data, "fig2_3.csv", c.SWEEP_COLUMNS)
+def simulation_curves(data: Path, study: str, name: str, tags) -> tuple[dict, dict]:
+    """A figure's simulation points by curve (tag -> selection of rows), and each curve's bands
+    (μmg, μMg, its largest force)."""
+    t = c.Table(c.study_file(data, name, study), c.SWEEP_COLUMNS)
     sim = (t["method"] == "analytic") & (t["converged"] == 1)
     curves, bands = {}, {}
-    for mu, tag in ((1.0, "mu1"), (0.2, "mu0.2")):
-        s = sim & np.isclose(t["mu"], mu, rtol=0, atol=1e-12)
+    for tag, mu, pick in tags(t):
+        s = sim & np.isclose(t["mu"], mu, rtol=0, atol=1e-12) & pick
         if np.count_nonzero(s) < 6:
-            c.fail(f"{t.path}: too few simulation rows at μ = {mu:g} for Fig. 2.3's lines")
+            c.fail(f"{t.path}: too few simulation rows for the curve {tag}")
         o = np.argsort(t["F"][s])
         curves[tag] = (t["F"][s][o], t["v_ss"][s][o])
         bands[tag] = (mu * c.m * c.G, mu * c.M * c.G, float(np.max(t["F"][s])))
+    return curves, bands
+
+
+# The regime-start groups: the figure they read, its curves, and their numbers.
+REGIME_FIGURES = {
+    "fig2_3": ("ch2_inchworm", "fig2_3.csv",
+               lambda t: [("mu1", 1.0, True), ("mu0.2", 0.2, True)], fs.fig2_3_numbers),
+    "fig2_7": ("ch2_dm_swap", "fig2_7.csv",
+               lambda t: [(f"mu{mu:g}_a{a:g}", mu, (t["model"] == "dm") & (t["alpha"] == a))
+                          for mu in (0.1, 0.6, 1.0) for a in (1.0, 5.0, 10.0)], fs.fig2_7_numbers),
+}
+
+
+def regime_start_search(data: Path, cfg: dict, group: fs.Group) -> fs.Found | None:
+    """A figure's regime lines from our simulation points, each regime from a fraction of its
+    band on (None when the figure's study has not run)."""
+    study, name, tags, numbers_of = REGIME_FIGURES[group.name]
+    if not (data / study / name).is_file():
+        return None
+    curves, bands = simulation_curves(data, study, name, tags)
     spec = next(g for g in cfg["group"] if g["name"] == group.name)
     candidates = [fs.RegimeStart(a, b) for a in spec["regime_I_start"]
-                  for b in spec["regime_II_start"]]
-    found = fs.search_fig2_3(curves, bands, candidates, group)
-    # Ours: the whole of each band, as our Fig. 2.3 fits it.
-    found.ours = fs.fig2_3_numbers(curves, bands, fs.RegimeStart(0.0, 0.0))
+                  for b in spec.get("regime_II_start", [0.0])]
+    found = fs.search_regime_starts(curves, bands, candidates, group, numbers_of)
+    # Ours: each band from its first point, as our figure fits it.
+    found.ours = numbers_of(curves, bands, fs.RegimeStart(0.0, 0.0))
     found.n_settings = len(candidates)
     return found
 
@@ -122,7 +147,7 @@ def start_label(start) -> str:
     return start if isinstance(start, str) else f"{start:g}"
 
 
-def heat(ax, found: fs.Found, cfg: dict, plt) -> None:
+def heat(ax, found: fs.Found, cfg: dict, plt, index: int) -> None:
     """The smallest distance (over steps and sets of μ) for each start and end of the grid, in
     the variant of the group's best setting."""
     starts, ends = cfg["grid"]["F_start"], cfg["grid"]["F_end"]
@@ -137,13 +162,13 @@ def heat(ax, found: fs.Found, cfg: dict, plt) -> None:
     ax.grid(False)
     for (i, j), d in np.ndenumerate(D):
         if d <= 1.0:
-            ax.text(j, i, "✓", ha="center", va="center", fontsize=9, color="white")
+            ax.text(j, i, "✓", ha="center", va="center", color="white")
     ax.set_xticks(range(len(ends)), [f"{e:g}" for e in ends], rotation=60)
     ax.set_yticks(range(len(starts)), [start_label(s) for s in starts])
     ax.set_xlabel("grid ends at F [N]")
     ax.set_ylabel("grid starts at F [N]")
-    ax.set_title(f"{found.group.title}\nbest distance per (start, end); ✓ = all within tolerance",
-                 fontsize=9)
+    ax.set_title(f"({'ab'[index]}) {found.group.name.replace('_', '.')}: best distance per (start, "
+                 "end)\n✓ = every number within its tolerance")
     plt.colorbar(im, ax=ax, label="log₁₀ distance (1 = at the tolerance)")
 
 
@@ -209,7 +234,8 @@ def main():
     printed = names[0]
     ours = fs.numbers(fs.per_mu(variants[printed], OURS), mu_sets[OURS_MU_SET], eq)
     best_by_variant = by_variant(found, names)
-    regime_found = [fig2_3_search(args.data, cfg, g) for g in load_groups(cfg, regime_starts=True)]
+    regime_found = [f for f in (regime_start_search(args.data, cfg, g)
+                                for g in load_groups(cfg, regime_starts=True)) if f is not None]
 
     values: dict = {"n_settings": len(candidates), "n_variants": len(names), "variants": names,
                     "search_cpu_s": search_s, "F_step_data": float(np.min(np.diff(np.unique(t["F"]))))}
@@ -247,24 +273,23 @@ def main():
     values["all_groups_best_setting"] = found[0].scores[i_best][0].label(mu_sets)
     values["all_groups_settings_within"] = int(sum(1 for d in together if d <= 1.0))
 
-    fig, axs = plt.subplots(1, len(found) + 1, figsize=(5.2 * (len(found) + 1), 4.8),
-                            width_ratios=[1] * len(found) + [0.8])
-    for ax, f in zip(axs, found):
+    fig = plt.figure(figsize=(6.6 * len(found), 9.6), layout="constrained")
+    grid = fig.add_gridspec(2, len(found), height_ratios=[1.0, 0.75])
+    for i, f in enumerate(found):
         if f.best is not None:
-            heat(ax, f, cfg, plt)
-    ax = axs[-1]
+            heat(fig.add_subplot(grid[0, i]), f, cfg, plt, i)
+    ax = fig.add_subplot(grid[1, :])
     y = np.arange(len(names))
     for i, f in enumerate(found):
         d = np.clip(best_by_variant[f.group.name], 1e-2, 1e4)
         ax.barh(y + (i - 0.5) * 0.35, d, height=0.35, color=c.CATEGORICAL[i],
-                label=f.group.name.replace("_", " "))
+                label=f.group.title)
     ax.axvline(1.0, color="0.3", lw=0.8, ls="--")
     ax.set_xscale("log")
-    ax.set_yticks(y, names, fontsize=7)
-    ax.set_xlabel("best distance (1 = at the tolerance)")
-    ax.set_title("by variant of the model or protocol", fontsize=9)
-    ax.legend(loc="lower right", fontsize=7)
-    fig.tight_layout()
+    ax.set_yticks(y, names)
+    ax.set_xlabel("best distance over every grid and set of μ (1 = at the tolerance)")
+    ax.set_title("(c) best distance by variant of the model or protocol")
+    ax.legend(loc="lower right")
     c.save_figure(fig, args.out, NAME)
     c.atomic_write_text(args.out / "forensics_table.html",
                         table(found, ours, mu_sets, names, best_by_variant)

@@ -68,7 +68,10 @@ class Group:
     title: str
     numbers: dict[str, str]      # claim id -> number key
     thesis: dict[str, float]     # number key -> the thesis' value
-    tol: dict[str, float]        # number key -> the entry's tolerance
+    tol: dict[str, float]        # number key -> the entry's tolerance (rule "abs")
+    # number key -> "abs" (within ±tol of the thesis), "at_least" or "at_most" (the thesis'
+    # bound); absent: "abs"
+    rule: dict[str, str] = field(default_factory=dict)
 
 
 def line(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
@@ -160,8 +163,16 @@ def distance(nums: dict[str, float], group: Group) -> tuple[float, dict[str, flo
     """The largest |ours − thesis| / tol over the group, and each number's own."""
     each = {}
     for key in group.numbers.values():
-        x = nums.get(key, math.nan)
-        each[key] = abs(x - group.thesis[key]) / group.tol[key] if np.isfinite(x) else math.inf
+        x, t = nums.get(key, math.nan), group.thesis[key]
+        rule = group.rule.get(key, "abs")
+        if not np.isfinite(x):
+            each[key] = math.inf
+        elif rule == "at_least":  # a bound: ≤ 1 exactly where it holds
+            each[key] = t / x if x > 0 else math.inf
+        elif rule == "at_most":
+            each[key] = x / t
+        else:
+            each[key] = abs(x - t) / group.tol[key]
     return max(each.values()), each
 
 
@@ -253,8 +264,9 @@ class RegimeStart:
     s_II: float
 
     def label(self, _mu_sets=None) -> str:
-        return (f"regime I from {self.s_I:.0%} of its band (μmg to μMg), regime II from "
-                f"{self.s_II:.0%} of its band (μMg to the largest force)")
+        two = ("regime II over its whole band" if self.s_II == 0 else
+               f"regime II from {self.s_II:.0%} of its band (μMg to the largest force)")
+        return f"regime I from {self.s_I:.0%} of its band (μmg to μMg), {two}"
 
 
 def regime_r2(F: np.ndarray, v: np.ndarray, lo: float, hi: float, s: float) -> float:
@@ -275,11 +287,21 @@ def fig2_3_numbers(curves: dict[str, tuple], bands: dict[str, tuple], setting: R
     return out
 
 
-def search_fig2_3(curves: dict, bands: dict, candidates: list[RegimeStart], group: Group
-                  ) -> Found:
+def fig2_7_numbers(curves: dict[str, tuple], bands: dict[str, tuple], setting: RegimeStart
+                   ) -> dict[str, float]:
+    """The smallest R² of the regime I lines (one mass moving) over the dm model's curves."""
+    r2 = [regime_r2(F, v, bands[tag][0], bands[tag][1], setting.s_I)
+          for tag, (F, v) in curves.items()]
+    return {"r2_R1_min": min(r2) if r2 and not any(math.isnan(x) for x in r2) else math.nan}
+
+
+def search_regime_starts(curves: dict, bands: dict, candidates: list[RegimeStart], group: Group,
+                         numbers_of=fig2_3_numbers) -> Found:
+    """The starts in the order given (the smallest departure from sampling the whole band first);
+    the group's setting is the first that reproduces it, else the nearest."""
     f = Found(group)
     for s in candidates:
-        nums = fig2_3_numbers(curves, bands, s)
+        nums = numbers_of(curves, bands, s)
         d, each = distance(nums, group)
         f.scores.append((s, d))
         if d < f.best_distance:
@@ -287,4 +309,9 @@ def search_fig2_3(curves: dict, bands: dict, candidates: list[RegimeStart], grou
         for key, dk in each.items():
             if key not in f.per_number or dk < f.per_number[key][0]:
                 f.per_number[key] = (dk, s)
+    first = next((s for s, d in f.scores if d <= 1.0), None)
+    if first is not None:
+        f.best = first
+        f.best_numbers = numbers_of(curves, bands, first)
+        f.best_distance, f.best_each = distance(f.best_numbers, group)
     return f
