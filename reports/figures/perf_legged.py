@@ -253,7 +253,43 @@ def measure(rows: dict) -> dict:
     # The same frames four per call (connection::evaluate_batch: frame i of a group in lane i),
     # for frames that do not wait for each other; a trajectory's frames do, and take one per call.
     v["ratio_model_batch_hexapod"] = ratio(v.get("hexapod_model_batch_ns"), model)
+    thesis_solvers(v, rows, visc, coul, eps)
     return v
+
+
+def thesis_solvers(v: dict, rows: dict, visc, coul, eps) -> None:
+    """The thesis' own solvers in this build (§3.5.1.3: MINPACK's Levenberg–Marquardt, one ε or
+    the sequence of ε), their ratios as the thesis states its own, and the checks of the
+    entries that compare those ratios: set when the thesis' algorithm, timed here, lands within
+    the entry's own tolerance of the thesis' ratio."""
+    ct, et = v.get("hexapod_coulomb_thesis_ns"), v.get("hexapod_epsilon_thesis_ns")
+
+    def ratio(a, b):
+        return a / b if a is not None and b else None
+
+    v["ratio_coulomb_thesis_viscous_hexapod"] = paired_ratio(
+        rows.get(("hexapod", 6, "coulomb_thesis")), ratio(ct, visc))
+    v["ratio_epsilon_thesis_viscous_hexapod"] = paired_ratio(
+        rows.get(("hexapod", 6, "epsilon_thesis")), ratio(et, visc))
+    v["ratio_coulomb_thesis_epsilon_thesis_hexapod"] = ratio(ct, et)
+    v["ratio_coulomb_thesis_over_ours_hexapod"] = ratio(ct, coul)
+    v["ratio_epsilon_thesis_over_ours_hexapod"] = ratio(et, eps)
+    ledger = {cl["id"]: cl for cl in c.load_ledger().get("claim", [])}
+    for entry, key in (("3.6.1-coulomb-over-viscous", "ratio_coulomb_thesis_viscous_hexapod"),
+                       ("3.6.1-epsilon-over-viscous", "ratio_epsilon_thesis_viscous_hexapod"),
+                       ("3.6.1-coulomb-over-epsilon",
+                        "ratio_coulomb_thesis_epsilon_thesis_hexapod")):
+        cl, got = ledger.get(entry), v.get(key)
+        name = f"thesis_algorithm_reproduces_{key.removeprefix('ratio_').removesuffix('_hexapod')}"
+        if cl is None or got is None:
+            v[name], v[name + "_reason"] = None, "not measured"
+            continue
+        thesis, tol = float(cl["thesis"]), float(cl["tol"])
+        ok = abs(got / thesis - 1.0) <= tol
+        v[name] = got if ok else None
+        v[name + "_reason"] = None if ok else (
+            f"the thesis' algorithm gives ×{got:.3g} here against the thesis' ×{thesis:g} "
+            f"(beyond ±{tol:.0%})")
 
 
 def is_paired(row: dict | None) -> bool:

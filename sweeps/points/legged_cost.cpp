@@ -20,11 +20,11 @@
 //  * solves every frame with the point's method and measures the error against the reference,
 //  * times the method: `repeats` times a loop over all frames (each repeat lasting ≥ 0.5 ms, the
 //    frames cycled as often as needed), reporting the median and quartiles over the repeats of
-//    the mean time per frame; Coulomb and the ε-family also time the viscous-Coulomb balance
-//    in the same repeats, alternately (viscous_time_ns, and ratio_viscous: the median of the
-//    per-repeat ratios, what the report states their cost in). All frames are built before the
-//    clock starts, so nothing in the timed loop allocates; the kind is timed, so the runner runs
-//    its points one at a time and two timings never share the cores of one sweep.
+//    the mean time per frame; Coulomb, the ε-family and the thesis' solvers also time the
+//    viscous-Coulomb balance in the same repeats, alternately (viscous_time_ns, and ratio_viscous:
+//    the median of the per-repeat ratios, what the report states their cost in). All frames are
+//    built before the clock starts, so nothing in the timed loop allocates; the kind is timed, so
+//    the runner runs its points one at a time and two timings never share the cores of one sweep.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -38,6 +38,7 @@
 #include "contact/support_batch.hpp"
 #include "core/csv.hpp"
 #include "friction/solvers.hpp"
+#include "friction/thesis_coulomb.hpp"
 #include "robots/robots.hpp"
 #include "sweeps/engine/point_kind.hpp"
 #include "sweeps/engine/point_reader.hpp"
@@ -64,15 +65,22 @@ enum class Method {
   kConnection,
   kModel,
   kSupportBatch,
-  kModelBatch
+  kModelBatch,
+  kEpsilonThesis,  ///< one ε solve by the thesis' Levenberg–Marquardt (friction/thesis_coulomb.hpp)
+  kCoulombThesis,  ///< the thesis' sequence of ε solves (§3.5.1.3)
 };
 
-const std::vector<std::string_view> kMethodNames = {"viscous",       "epsilon",    "coulomb",
-                                                    "support",       "connection", "model",
-                                                    "support_batch", "model_batch"};
+const std::vector<std::string_view> kMethodNames = {
+    "viscous", "epsilon",       "coulomb",     "support",        "connection",
+    "model",   "support_batch", "model_batch", "epsilon_thesis", "coulomb_thesis"};
+
+/// The thesis' own solvers (§3.5.1.3), timed beside ours: a peer, not a method of ours.
+[[nodiscard]] bool is_thesis(Method m) {
+  return m == Method::kEpsilonThesis || m == Method::kCoulombThesis;
+}
 
 [[nodiscard]] bool is_friction(Method m) {
-  return m == Method::kViscous || m == Method::kEpsilon || m == Method::kCoulomb;
+  return m == Method::kViscous || m == Method::kEpsilon || m == Method::kCoulomb || is_thesis(m);
 }
 
 /// The methods that take all frames at once, four side by side (contact::spring_support_batch,
@@ -142,14 +150,16 @@ CostInputs read_cost(const Point& point) {
                          "\" takes independent frames four at a time: not with sequence = "
                          "\"trajectory\", whose frames start from each other's answers");
   }
-  if (in.method == Method::kEpsilon) {
+  if (in.method == Method::kEpsilon || in.method == Method::kEpsilonThesis) {
     if (!r.has("eps")) {
-      r.fail("eps", "required with method = \"epsilon\" (eq. 3.14's ε, m/s)");
+      r.fail("eps", "required with method = \"" + method + "\" (eq. 3.14's ε, m/s)");
     }
     in.eps = r.number("eps", 1.0, core::closed(1e-12, 1e12, "m/s"));
-    in.tol = r.number("tol", friction::EpsilonOptions{}.tol, core::closed(1e-15, 1.0));
+    if (in.method == Method::kEpsilon) {
+      in.tol = r.number("tol", friction::EpsilonOptions{}.tol, core::closed(1e-15, 1.0));
+    }
   } else if (r.has("eps")) {
-    r.fail("eps", "only used with method = \"epsilon\"");
+    r.fail("eps", "only used with method = \"epsilon\" or \"epsilon_thesis\"");
   }
   if (in.method == Method::kCoulomb) {
     in.tol = r.number("tol", friction::CoulombOptions{}.tol, core::closed(1e-15, 1.0));
@@ -286,6 +296,21 @@ void solve(const contact::Robot& robot, contact::Frame& f, const CostInputs& in)
       friction::solve_coulomb(robot, f, options);
       break;
     }
+    case Method::kEpsilonThesis:
+    case Method::kCoulombThesis: {
+      // The thesis hot-starts from the previous time step; an independent frame starts, as our
+      // solvers do, from its viscous-Coulomb balance (timed with the method).
+      if (!in.trajectory) {
+        friction::solve_viscous_coulomb(robot, f);
+      }
+      const Eigen::Vector3d start = f.v_body;
+      if (in.method == Method::kEpsilonThesis) {
+        friction::solve_epsilon_thesis(robot, f, in.eps, start);
+      } else {
+        friction::solve_coulomb_thesis(robot, f, start);
+      }
+      break;
+    }
     case Method::kSupport:
       contact::spring_support(robot, f, contact::SupportOptions{.warm_start = in.trajectory});
       break;
@@ -336,7 +361,7 @@ struct Timing {
 /// Whether a row also times the viscous-Coulomb balance alternately with its method: the friction
 /// laws whose cost the report states as a multiple of it (Coulomb, the ε-family).
 [[nodiscard]] bool paired_with_viscous(Method m) {
-  return m == Method::kCoulomb || m == Method::kEpsilon;
+  return m == Method::kCoulomb || m == Method::kEpsilon || is_thesis(m);
 }
 
 /// Mean CPU time per frame of the method over all frames, `repeats` times; the frames were solved
@@ -590,7 +615,8 @@ Rows<CostRow> run_cost(const Point& point) {
       ref = f;
       friction::solve_coulomb(robot, ref, friction::CoulombOptions{kReferenceTol});
       ref_static += ref.friction.static_feet;
-      add_error(robot, f, ref, in.method != Method::kCoulomb, errors);
+      add_error(robot, f, ref, in.method != Method::kCoulomb && in.method != Method::kCoulombThesis,
+                errors);
     }
   }
   const bool paired = paired_with_viscous(in.method);
