@@ -23,8 +23,9 @@
 //    the mean time per frame; Coulomb, the ε-family and the thesis' solvers also time the
 //    viscous-Coulomb balance in the same repeats, alternately (viscous_time_ns, and ratio_viscous:
 //    the median of the per-repeat ratios, what the report states their cost in). All frames are
-//    built before the clock starts, so nothing in the timed loop allocates; the kind is timed, so
-//    the runner runs its points one at a time and two timings never share the cores of one sweep.
+//    built before the clock starts, so nothing in the timed loop allocates (but the thesis'
+//    solvers, whose MINPACK work arrays are part of what they cost); the kind is timed, so the
+//    runner runs its points one at a time and two timings never share the cores of one sweep.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
