@@ -584,6 +584,11 @@ def body(v: dict, rows: dict, machine_missing: str | None) -> str:
             else "same run") + f" ({seq} frames)",
          f"×{c.fmt(v.get('flops_ratio_coulomb_viscous_hexapod'), 3)} (ratio of their "
          "arithmetic)", f"{c.fmt(v.get('ratio_coulomb_viscous_stated'), 3)}×"),
+        ("Hexapod: the thesis' own Coulomb solver (§3.5.1.3: Levenberg–Marquardt over "
+         "ε = 1e-5, 1e-6, …; friction/thesis_coulomb.hpp) ÷ ours to 1e-9, same frames",
+         "—", f"{c.fmt(v.get('ratio_coulomb_thesis_over_ours_hexapod'), 3)}× "
+         f"({us(v.get('hexapod_coulomb_thesis_ns'))} against "
+         f"{us(v.get('hexapod_coulomb_1e-09_ns'))})"),
     ]
     measured_rows = "".join(f"<tr><td>{html.escape(a)}</td><td>{lim}</td><td>{ours}</td></tr>"
                             for a, lim, ours in measured)
