@@ -24,6 +24,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plotting"))  # the shared helpers
 import calibration as cal  # noqa: E402
+import calibration_search as cs  # noqa: E402
 import common as c  # noqa: E402
 
 NAME = "fig4_6"
@@ -74,6 +75,8 @@ def main():
         if v["literal_over_full_torque_rmse"] is None:
             v["literal_over_full_torque_rmse_reason"] = "the full calibration leaves no residual"
 
+    search(args.data, v)
+
     # ---- figure
     fig, axes = plt.subplots(1, 3, figsize=(14, 5.6), gridspec_kw={"width_ratios": [1, 1, 1.1]})
     n = len(methods)
@@ -112,6 +115,41 @@ def main():
     fig.tight_layout(rect=(0, 0, 1, 0.88))
     c.save_figure(fig, args.out, NAME)
     c.write_values(args.out, NAME, v)
+
+
+def search(data: Path, v: dict) -> None:
+    """The chapter 4 forensics (calibration_search.py) over cv_search.csv and pose_search.csv:
+    ch4_joint_noise_scale is the check behind the four entries' explanation, None when no one
+    setting holds them all."""
+    # Every value the ledger quotes, present even when the search finds nothing or cannot run.
+    for key in ("noise_scale", "cv_factor", "cv_relative", "force_reduction", "torque_reduction",
+                "shared_over_full", "com_over_translations"):
+        v[f"ch4_joint_{key}"] = None
+    v["ch4_search_n"] = 0
+    v["ch4_naive_horizontal_over_weight_by_setting"] = None
+    files = [data / "ch4_calibration" / f for f in ("cv_search.csv", "pose_search.csv")]
+    if not all(f.is_file() for f in files):
+        v["ch4_joint_noise_scale_reason"] = "cv_search.csv or pose_search.csv missing"
+        return
+    cv = cal.load(data, "cv_search.csv", cal.MODEL_COLUMNS + ["noise_scale"])
+    poses = cal.load(data, "pose_search.csv", cal.POSE_COLUMNS + ["noise_scale"])
+    thesis = {e: c.thesis(e) for e in cs.ENTRIES}
+    settings, hit = cs.search(cv, poses, thesis)
+    v["ch4_search_settings"] = settings
+    v["ch4_search_n"] = len(settings)
+    v["ch4_naive_horizontal_over_weight_by_setting"] = [
+        s["naive_horizontal_over_weight"] for s in settings]
+    if hit is None:
+        v["ch4_joint_noise_scale_reason"] = (f"none of the {len(settings)} settings holds "
+                                             f"{', '.join(cs.ENTRIES)} together")
+        return
+    v["ch4_joint_noise_scale"] = hit["noise_scale"]
+    v["ch4_joint_cv_factor"] = hit["cv_factor"]
+    v["ch4_joint_cv_relative"] = hit["cv_relative"]
+    v["ch4_joint_force_reduction"] = hit["force"]
+    v["ch4_joint_torque_reduction"] = hit["torque"]
+    v["ch4_joint_shared_over_full"] = hit["cv_relative"][1]
+    v["ch4_joint_com_over_translations"] = hit["cv_relative"][3] / hit["cv_relative"][2]
 
 
 if __name__ == "__main__":

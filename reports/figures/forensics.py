@@ -143,6 +143,22 @@ def regime_start_search(data: Path, cfg: dict, group: fs.Group) -> fs.Found | No
     return found
 
 
+def missing_group(values: dict, group: fs.Group) -> None:
+    """A regime-start group whose figure's study has not run: its values, each None, so that the
+    ledger's texts still find them."""
+    g = group.name
+    study, name, *_ = REGIME_FIGURES[g]
+    reason = f"{study}/{name} missing (run `slipwalk reproduce {study}`)"
+    for key in ("n_settings", "best_distance", "joint", "best_setting", "best_variant",
+                "per_number_max", "per_number_only", "settings_within", "ours_distance"):
+        values[f"{g}_{key}"] = None
+    for key in group.numbers.values():
+        values[f"{g}_{key}"] = None
+        values[f"{g}_ours_{key}"] = None
+    values[f"{g}_explained_by_setting"] = None
+    values[f"{g}_explained_by_setting_reason"] = reason
+
+
 def start_label(start) -> str:
     return start if isinstance(start, str) else f"{start:g}"
 
@@ -231,13 +247,19 @@ def main():
     t0 = time.process_time()
     found = fs.search(variants, candidates, mu_sets, groups, eq)
     search_s = time.process_time() - t0
+    pending: dict = {}  # the values of groups whose figure's study has not run
     printed = names[0]
     ours = fs.numbers(fs.per_mu(variants[printed], OURS), mu_sets[OURS_MU_SET], eq)
     best_by_variant = by_variant(found, names)
-    regime_found = [f for f in (regime_start_search(args.data, cfg, g)
-                                for g in load_groups(cfg, regime_starts=True)) if f is not None]
+    regime_found = []
+    for g in load_groups(cfg, regime_starts=True):
+        f = regime_start_search(args.data, cfg, g)
+        if f is None:
+            missing_group(pending, g)
+        else:
+            regime_found.append(f)
 
-    values: dict = {"n_settings": len(candidates), "n_variants": len(names), "variants": names,
+    values: dict = {**pending, "n_settings": len(candidates), "n_variants": len(names), "variants": names,
                     "search_cpu_s": search_s, "F_step_data": float(np.min(np.diff(np.unique(t["F"]))))}
     for f in found + regime_found:
         g = f.group.name

@@ -130,52 +130,8 @@ def main():
            f"<b>{html.escape(v['min_bic_model'])}</b>. The thesis' CV errors and BIC are its "
            f"robot's: only their order compares. Data: "
            f"<code>{html.escape(c.shown_path(t.path))}</code>.</p>\n")
-    cv_search(args.data, th_cv, v)
     c.atomic_write_text(args.out / f"{NAME}_table.html", out)
     c.write_values(args.out, NAME, v)
-
-
-def cv_search(data, th_cv: list, v: dict) -> None:
-    """cv_search.csv (the noise scale × translation errors of the synthetic robot): per setting
-    the CV errors relative to the full model's, against the thesis' (12, 17, 62, 105), and the
-    first setting, in the sweep's order, that gives the thesis' order and its CoM-only ÷ full
-    factor of at least 8 together (entries table4.2-cv-error, 4.5-cv-factor-8): the check behind
-    their explanation, None when no setting does."""
-    path = data / "ch4_calibration" / "cv_search.csv"
-    v["cv_search_joint"] = None
-    if not path.is_file():
-        v["cv_search_joint_reason"] = f"{c.shown_path(path)} missing"
-        return
-    t = cal.load(data, "cv_search.csv", cal.MODEL_COLUMNS + ["noise_scale", "mounting_translation"])
-    bound = float(c.thesis("4.5-cv-factor-8"))
-    settings = []
-    for noise, trans in dict.fromkeys(zip(t["noise_scale"].astype(float),
-                                          t["mounting_translation"].astype(float))):
-        rows = t.subset(np.isclose(t["noise_scale"].astype(float), noise)
-                        & np.isclose(t["mounting_translation"].astype(float), trans))
-        cv = {str(m): float(x) for m, x in zip(rows.str("model"), rows["cv_mse"])}
-        ordered = [cv[m] for m in cal.MODELS]
-        factor = ordered[-1] / ordered[0] if ordered[0] > 0 else math.inf
-        settings.append({"noise_scale": noise, "translation_m": trans,
-                         "relative": [x / ordered[0] for x in ordered],
-                         "order_as_thesis": all(a < b for a, b in zip(ordered, ordered[1:])),
-                         "factor": factor})
-    v["cv_search_settings"] = settings
-    v["cv_search_thesis_relative"] = [x / th_cv[0] for x in th_cv]
-    v["cv_search_factor_bound"] = bound
-    hit = next((s for s in settings if s["order_as_thesis"] and s["factor"] >= bound), None)
-    if hit is None:
-        v["cv_search_joint_reason"] = (f"none of the {len(settings)} settings gives the thesis' "
-                                       f"order and a factor ≥ {bound:g} together")
-        return
-    v["cv_search_joint"] = hit["factor"]
-    v["cv_search_noise_scale"] = hit["noise_scale"]
-    v["cv_search_translation_m"] = hit["translation_m"]
-    v["cv_search_relative"] = hit["relative"]
-    v["cv_search_shared_over_full"] = hit["relative"][1]
-    v["cv_search_com_over_translations"] = hit["relative"][3] / hit["relative"][2]
-    v["cv_search_thesis_shared_over_full"] = th_cv[1] / th_cv[0]
-    v["cv_search_thesis_com_over_translations"] = th_cv[3] / th_cv[2]
 
 
 if __name__ == "__main__":
