@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "events/exact_backend.hpp"
 #include "inchworm/closed_form.hpp"
@@ -106,6 +107,30 @@ TEST(Simulation, TheThesisProtocolConvergesToTheClosedFormAsItsToleranceGoesToZe
     }
     EXPECT_LT(previous, 1e-4) << "mu = " << mu;
   }
+}
+
+// The same protocol on a fixed RK4 step (the thesis' other reading of its integrator, §2.2.2):
+// its error has two parts, the step's O(h) and the stopping rule's O(√tol), and goes to zero as
+// both shrink together.
+TEST(Simulation, TheThesisProtocolOnAFixedStepConvergesAsTheStepAndToleranceShrink) {
+  Params p;
+  p.F = 45.0;
+  const double exact = steady_state_closed_form(p).v_ss;
+  double previous = 1.0;
+  for (const auto& [h, tol] :
+       {std::pair{1e-3, 1e-4}, std::pair{1e-4, 1e-6}, std::pair{2e-5, 1e-7}}) {
+    VssOptions opt;
+    opt.step = h;
+    opt.target = tol;
+    opt.stop = StopRule::kConsecutiveDifference;
+    opt.estimator = Estimator::kRunningMean;
+    const VssResult r = solve_vss(p, Method::kFixedRk4, opt);
+    ASSERT_TRUE(r.converged) << "h = " << h << ": " << r.message;
+    const double gap = rel_diff(r.v_ss, exact);
+    EXPECT_LT(gap, previous / 3.0) << "h = " << h << ", tol = " << tol;
+    previous = gap;
+  }
+  EXPECT_LT(previous, 1e-4);
 }
 
 TEST(Simulation, IsDeterministic) {
