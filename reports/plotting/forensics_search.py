@@ -190,6 +190,17 @@ class Found:
     ours: dict[str, float] = field(default_factory=dict)  # the numbers as our study samples
     n_settings: int = 0
 
+    def score(self, setting, nums: dict[str, float]) -> None:
+        """Records a setting's numbers: its distance, the best so far, each number's best."""
+        d, each = distance(nums, self.group)
+        self.scores.append((setting, d))
+        if d < self.best_distance:
+            self.best, self.best_distance, self.best_numbers, self.best_each = (setting, d, nums,
+                                                                                each)
+        for key, dk in each.items():
+            if key not in self.per_number or dk < self.per_number[key][0]:
+                self.per_number[key] = (dk, setting)
+
     @property
     def joint(self) -> bool:
         return self.best_distance <= 1.0
@@ -222,13 +233,7 @@ def search(variants: dict[str, Variant], candidates: list[Setting], mu_sets: dic
             cache[key] = per_mu(variants[s.variant], s.grid)
         nums = numbers(cache[key], mu_sets[s.mu_set], eq2_6_thesis)
         for f in found:
-            d, each = distance(nums, f.group)
-            f.scores.append((s, d))
-            if d < f.best_distance:
-                f.best, f.best_distance, f.best_numbers, f.best_each = s, d, nums, each
-            for key, dk in each.items():
-                if key not in f.per_number or dk < f.per_number[key][0]:
-                    f.per_number[key] = (dk, s)
+            f.score(s, nums)
     for f in found:
         prefer_first_variant(f, variants, mu_sets, eq2_6_thesis)
     return found
@@ -301,14 +306,7 @@ def search_regime_starts(curves: dict, bands: dict, candidates: list[RegimeStart
     the group's setting is the first that reproduces it, else the nearest."""
     f = Found(group)
     for s in candidates:
-        nums = numbers_of(curves, bands, s)
-        d, each = distance(nums, group)
-        f.scores.append((s, d))
-        if d < f.best_distance:
-            f.best, f.best_distance, f.best_numbers, f.best_each = s, d, nums, each
-        for key, dk in each.items():
-            if key not in f.per_number or dk < f.per_number[key][0]:
-                f.per_number[key] = (dk, s)
+        f.score(s, numbers_of(curves, bands, s))
     first = next((s for s, d in f.scores if d <= 1.0), None)
     if first is not None:
         f.best = first

@@ -254,6 +254,14 @@ void read_solver(const Reader& r, InchwormInputs& in, bool solver_keys) {
 }
 
 double f_tilde_of(const Params& p) { return p.F / (p.mu * p.M * p.g); }
+
+/// The spec's names of a solve's stopping rule and estimator (read by read_solver).
+const char* stop_name(const inchworm::VssOptions& opt) {
+  return opt.stop == inchworm::StopRule::kEstimatedError ? "estimate" : "difference";
+}
+const char* estimator_name(const inchworm::VssOptions& opt) {
+  return opt.estimator == inchworm::Estimator::kCycleAverage ? "cycle" : "running";
+}
 double f_frac_of(const InchwormInputs& in) {
   return in.F_max > in.F_lo ? (in.p.F - in.F_lo) / (in.F_max - in.F_lo) : std::nan("");
 }
@@ -427,8 +435,8 @@ Rows<VssRow> run_vss(const Point& point) {
   row.F_frac = f_frac_of(in);
   row.method = inchworm::method_name(in.method);
   row.rtol = in.opt.rtol;
-  row.stop = in.opt.stop == inchworm::StopRule::kEstimatedError ? "estimate" : "difference";
-  row.estimator = in.opt.estimator == inchworm::Estimator::kCycleAverage ? "cycle" : "running";
+  row.stop = stop_name(in.opt);
+  row.estimator = estimator_name(in.opt);
   row.v_ss = shown(s.v_ss);
   row.period = shown(s.period);
   row.c0 = shown(s.c0);
@@ -671,8 +679,8 @@ Rows<ForceGridRow> run_force_grid(const Point& point) {
     row.F = p.F;
     row.f_tilde = f_tilde_of(p);
     row.method = inchworm::method_name(g.in.method);
-    row.stop = g.in.opt.stop == inchworm::StopRule::kEstimatedError ? "estimate" : "difference";
-    row.estimator = g.in.opt.estimator == inchworm::Estimator::kCycleAverage ? "cycle" : "running";
+    row.stop = stop_name(g.in.opt);
+    row.estimator = estimator_name(g.in.opt);
     row.rtol = g.in.opt.rtol;
     row.g = p.g;
     row.m = p.m;
