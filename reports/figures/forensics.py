@@ -35,6 +35,27 @@ OURS = fs.Grid("muMg", 0.5, 73.5)
 OURS_MU_SET = "0.05 to 1 in steps of 0.05"
 
 
+def load_search(path: Path) -> dict:
+    """The search's candidate choices; exit 2 naming the file and what is wrong."""
+    try:
+        with open(path, "rb") as f:
+            cfg = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        c.fail(f"{path}: {e}")
+    for key, kind in (("grid", dict), ("mu_sets", dict), ("group", list)):
+        if not isinstance(cfg.get(key), kind):
+            c.fail(f"{path}: needs a [{key}] table" if kind is dict else
+                   f"{path}: needs [[group]] entries")
+    for key in ("F_start", "F_end", "F_step"):
+        got = cfg["grid"].get(key)
+        if not isinstance(got, list) or not got:
+            c.fail(f"{path}: [grid] {key} must be a non-empty list")
+    for g in cfg["group"]:
+        if not isinstance(g.get("name"), str) or not isinstance(g.get("claims"), dict):
+            c.fail(f"{path}: every [[group]] needs a name and a claims table")
+    return cfg
+
+
 def variant_label(t: c.Table, i: int) -> str:
     """A block's rows named by what they change against the model and method as printed."""
     method = str(t["method"][i])
@@ -235,8 +256,7 @@ def main():
                                                   "status"])
     if np.any(t["status"] != "converged"):
         c.fail(f"{t.path}: {int(np.sum(t['status'] != 'converged'))} rows did not converge")
-    with open(SEARCH, "rb") as f:
-        cfg = tomllib.load(f)
+    cfg = load_search(SEARCH)
     variants = load_variants(t)
     mu_sets = mu_sets_on(cfg, variants)
     groups = load_groups(cfg, regime_starts=False)

@@ -2,8 +2,10 @@
 the regressions recover the coefficients of data built from them (lines per μ, eq. 2.6's law);
 the search finds a setting planted in synthetic "thesis numbers" made by the code itself; and it
 refuses to call a group reproduced when each number is matched only by a setting of its own."""
+import importlib.util
 import math
 import sys
+import tempfile
 import unittest
 from pathlib import Path
 
@@ -109,6 +111,34 @@ class Search(unittest.TestCase):
         self.assertEqual(found.per_number["k2"][1], a)
         self.assertEqual(found.per_number["b0"][1], b)
         self.assertGreater(found.best_distance, 1.0)
+
+
+class SearchFile(unittest.TestCase):
+    """data/thesis/forensics.toml is a file a user widens: a broken one is exit 2, named."""
+
+    def load(self, text: str):
+        spec = importlib.util.spec_from_file_location(
+            "forensics_figure", REPO / "reports" / "figures" / "forensics.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        with tempfile.NamedTemporaryFile("w", suffix=".toml", delete=False) as f:
+            f.write(text)
+        return module.load_search(Path(f.name))
+
+    def test_the_shipped_search_file_loads(self):
+        spec = importlib.util.spec_from_file_location(
+            "forensics_figure", REPO / "reports" / "figures" / "forensics.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        cfg = module.load_search(module.SEARCH)
+        self.assertTrue(cfg["grid"]["F_start"])
+
+    def test_bad_toml_and_a_missing_grid_list_exit_2(self):
+        for text in ("[grid\n", "[grid]\nF_start = []\nF_end = [1.0]\nF_step = [0.5]\n"
+                     "[mu_sets]\n[[group]]\nname = 'g'\nclaims = {}\n"):
+            with self.assertRaises(SystemExit) as e:
+                self.load(text)
+            self.assertEqual(e.exception.code, 2, text)
 
 
 if __name__ == "__main__":
