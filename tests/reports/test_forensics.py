@@ -116,20 +116,22 @@ class Search(unittest.TestCase):
 class SearchFile(unittest.TestCase):
     """data/thesis/forensics.toml is a file a user widens: a broken one is exit 2, named."""
 
-    def load(self, text: str):
+    @staticmethod
+    def script():
         spec = importlib.util.spec_from_file_location(
             "forensics_figure", REPO / "reports" / "figures" / "forensics.py")
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
+        return module
+
+    def load(self, text: str):
+        module = self.script()
         with tempfile.NamedTemporaryFile("w", suffix=".toml", delete=False) as f:
             f.write(text)
         return module.load_search(Path(f.name))
 
     def test_the_shipped_search_file_loads(self):
-        spec = importlib.util.spec_from_file_location(
-            "forensics_figure", REPO / "reports" / "figures" / "forensics.py")
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
+        module = self.script()
         cfg = module.load_search(module.SEARCH)
         self.assertTrue(cfg["grid"]["F_start"])
 
