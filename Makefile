@@ -29,7 +29,7 @@ DEBIAN_PACKAGES := cmake ninja-build g++ make pkg-config git \
   libceres-dev \
   openmpi-bin libopenmpi-dev \
   libmujoco-dev \
-  python3 python3-matplotlib python3-numpy python3-markdown
+  python3 python3-matplotlib python3-numpy python3-scipy python3-markdown
 # Only `make test` and `make report-check` need these: headless Chromium reads the built pages
 # (reports/site/check_pages.py). It is a third of the packages' install time, off the
 # reproduction's path.
