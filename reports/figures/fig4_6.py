@@ -119,37 +119,67 @@ def main():
 
 def search(data: Path, v: dict) -> None:
     """The chapter 4 forensics (calibration_search.py) over cv_search.csv and pose_search.csv:
-    ch4_joint_noise_scale is the check behind the four entries' explanation, None when no one
+    ch4_joint_noise_scale is the check behind the seven entries' explanation, None when no one
     setting holds them all."""
     # Every value the ledger quotes, present even when the search finds nothing or cannot run.
-    for key in ("noise_scale", "cv_factor", "cv_relative", "force_reduction", "torque_reduction",
-                "shared_over_full", "com_over_translations"):
+    for key in ("noise_scale", "mounting_rotation", "cv_factor", "cv_relative", "force_reduction",
+                "torque_reduction", "shared_over_full", "com_over_translations",
+                "naive_over_full_force", "literal_over_full_torque",
+                "naive_horizontal_over_weight"):
         v[f"ch4_joint_{key}"] = None
     v["ch4_search_n"] = 0
-    v["ch4_naive_horizontal_over_weight_by_setting"] = None
+    for key in ("naive_horizontal_over_weight", "naive_over_full_force",
+                "literal_over_full_torque"):
+        v[f"ch4_{key}_at_default_rotation"] = None
+    for key in ("slope", "intercept", "r2", "rotation_for_thesis"):
+        v[f"ch4_horizontal_{key}"] = None
     files = [data / "ch4_calibration" / f for f in ("cv_search.csv", "pose_search.csv")]
     if not all(f.is_file() for f in files):
         v["ch4_joint_noise_scale_reason"] = "cv_search.csv or pose_search.csv missing"
         return
-    cv = cal.load(data, "cv_search.csv", cal.MODEL_COLUMNS + ["noise_scale"])
-    poses = cal.load(data, "pose_search.csv", cal.POSE_COLUMNS + ["noise_scale"])
-    thesis = {e: c.thesis(e) for e in cs.ENTRIES}
-    settings, hit = cs.search(cv, poses, thesis)
+    knobs = list(cs.KNOBS)
+    cv = cal.load(data, "cv_search.csv", cal.MODEL_COLUMNS + knobs)
+    poses = cal.load(data, "pose_search.csv", cal.POSE_COLUMNS + knobs)
+    settings, hit = cs.search(cv, poses, {e: c.target(e) for e in cs.ENTRIES})
     v["ch4_search_settings"] = settings
     v["ch4_search_n"] = len(settings)
-    v["ch4_naive_horizontal_over_weight_by_setting"] = [
-        s["naive_horizontal_over_weight"] for s in settings]
+    v["ch4_search_rotations"] = sorted({s["mounting_rotation"] for s in settings})
+    v["ch4_search_noise_scales"] = sorted({s["noise_scale"] for s in settings}, reverse=True)
+    default = [s for s in settings if s["mounting_rotation"] == min(v["ch4_search_rotations"])]
+    for key in ("naive_horizontal_over_weight", "naive_over_full_force",
+                "literal_over_full_torque"):
+        v[f"ch4_{key}_at_default_rotation"] = [s[key] for s in default]
+    horizontal_law(settings, v)
     if hit is None:
         v["ch4_joint_noise_scale_reason"] = (f"none of the {len(settings)} settings holds "
                                              f"{', '.join(cs.ENTRIES)} together")
         return
-    v["ch4_joint_noise_scale"] = hit["noise_scale"]
-    v["ch4_joint_cv_factor"] = hit["cv_factor"]
-    v["ch4_joint_cv_relative"] = hit["cv_relative"]
+    for key in ("noise_scale", "mounting_rotation", "cv_factor", "cv_relative",
+                "naive_over_full_force", "literal_over_full_torque",
+                "naive_horizontal_over_weight"):
+        v[f"ch4_joint_{key}"] = hit[key]
     v["ch4_joint_force_reduction"] = hit["force"]
     v["ch4_joint_torque_reduction"] = hit["torque"]
     v["ch4_joint_shared_over_full"] = hit["cv_relative"][1]
     v["ch4_joint_com_over_translations"] = hit["cv_relative"][3] / hit["cv_relative"][2]
+
+
+def horizontal_law(settings: list[dict], v: dict) -> None:
+    """How naive taring's horizontal force grows with the mounting rotations: a line through
+    the settings of the least noise (the rotations tilt the legs' loads into x and y), and the
+    rotation σ at which it would reach the thesis' 25 % of the weight."""
+    least = min(s["noise_scale"] for s in settings)
+    rows = [s for s in settings if s["noise_scale"] == least]
+    fit = c.linfit([s["mounting_rotation"] for s in rows],
+                   [s["naive_horizontal_over_weight"] for s in rows])
+    if fit["k"] is None or fit["k"] <= 0:
+        v["ch4_horizontal_slope_reason"] = "fewer than three mounting rotations searched"
+        return
+    v["ch4_horizontal_slope"] = fit["k"]
+    v["ch4_horizontal_intercept"] = fit["b"]
+    v["ch4_horizontal_r2"] = fit["r2"]
+    v["ch4_horizontal_rotation_for_thesis"] = ((float(c.thesis("4.5-naive-horizontal")) - fit["b"])
+                                               / fit["k"])
 
 
 if __name__ == "__main__":

@@ -82,12 +82,23 @@ def load_ledger(path: Path = LEDGER) -> dict:
         fail(f"{path}: {e}")
 
 
-def thesis(claim_id: str):
-    """The thesis' value of a ledger entry (its `thesis` field)."""
+def claim(claim_id: str) -> dict:
+    """A ledger entry by its id."""
     for entry in load_ledger().get("claim", []):
         if entry.get("id") == claim_id:
-            return entry["thesis"]
+            return entry
     fail(f"{LEDGER}: no claim with id '{claim_id}'")
+
+
+def thesis(claim_id: str):
+    """The thesis' value of a ledger entry (its `thesis` field)."""
+    return claim(claim_id)["thesis"]
+
+
+def target(claim_id: str):
+    """The number a ledger entry is judged against: its `target`, else its `thesis`."""
+    entry = claim(claim_id)
+    return entry.get("target", entry["thesis"])
 
 
 # ---------------------------------------------------------------------------------------------

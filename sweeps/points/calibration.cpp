@@ -18,7 +18,8 @@
 //                            z-scores and times (the cost of accuracy in data).
 //
 // Shared parameters (defaults): seed = 1, noise_scale = 1, poses = 543, samples_per_cycle = 900,
-// cycles = 10, mounting_translation = 0.003 m (the synthetic options of calibration/synthetic.hpp;
+// cycles = 10, mounting_translation = 0.003 m, mounting_rotation = 0.035 rad (the synthetic options
+// of calibration/synthetic.hpp;
 // every other one at its default). Every kind but calib_accuracy takes its robot and default
 // calibration from the process-wide cache of calibration.hpp; calib_accuracy makes its own (its
 // grid is large and its times must be its own). The two kinds that time (calib_starts,
@@ -63,8 +64,13 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 
 // --- shared inputs ------------------------------------------------------------------------------
 
-const std::vector<std::string_view> kSharedKeys = {
-    "seed", "noise_scale", "poses", "samples_per_cycle", "cycles", "mounting_translation"};
+const std::vector<std::string_view> kSharedKeys = {"seed",
+                                                   "noise_scale",
+                                                   "poses",
+                                                   "samples_per_cycle",
+                                                   "cycles",
+                                                   "mounting_translation",
+                                                   "mounting_rotation"};
 
 std::vector<std::string_view> keys_with(std::vector<std::string_view> own) {
   own.insert(own.end(), kSharedKeys.begin(), kSharedKeys.end());
@@ -90,6 +96,8 @@ SynthKey read_shared(const Reader& r) {
   k.cycles = static_cast<int>(r.integer("cycles", 10, 1, 100));
   // The synthetic robot refuses translation errors of 5 cm or more (calibration/synthetic.hpp).
   k.mounting_translation = r.number("mounting_translation", 0.003, core::closed(0.0, 0.049, "m"));
+  // ... and rotation errors of 0.3 rad or more (the small-angle tilt of its floor model).
+  k.mounting_rotation = r.number("mounting_rotation", 0.035, core::closed(0.0, 0.29, "rad"));
   const double samples = static_cast<double>(k.samples_per_cycle) * k.cycles;
   r.limit_work("samples_per_cycle", "samples_per_cycle · cycles hanging samples per record",
                samples, kMaxSamples);
@@ -440,14 +448,18 @@ struct PoseRow {
   long long id = 0;
   long long seed = 0;
   double noise_scale = 0.0;
+  double mounting_rotation = 0.0;
   long long pose = 0;
   std::string method;
   std::array<double, 6> e{};
 
   static std::vector<Column<PoseRow>> columns() {
     using R = PoseRow;
-    std::vector<Column<R>> out = {value("id", &R::id), value("seed", &R::seed),
-                                  value("noise_scale", &R::noise_scale), value("pose", &R::pose),
+    std::vector<Column<R>> out = {value("id", &R::id),
+                                  value("seed", &R::seed),
+                                  value("noise_scale", &R::noise_scale),
+                                  value("mounting_rotation", &R::mounting_rotation, "rad"),
+                                  value("pose", &R::pose),
                                   value("method", &R::method)};
     for (std::size_t j = 0; j < 6; ++j) {
       out.push_back(value_at(kComponents[j], &R::e, j, j < 3 ? "N" : "N·m"));
@@ -483,6 +495,7 @@ Rows<PoseRow> run_poses(const Point& point) {
         r.id = point.id;
         r.seed = static_cast<long long>(key.seed);
         r.noise_scale = key.noise_scale;
+        r.mounting_rotation = key.mounting_rotation;
         r.pose = static_cast<long long>(p);
         r.method = method;
         for (std::size_t j = 0; j < 6; ++j) {
@@ -523,6 +536,7 @@ struct ModelRow {
   double noise_scale = 0.0;
   long long poses = 0;
   double mounting_translation = 0.0;
+  double mounting_rotation = 0.0;
   std::string model;
   long long dof = 0;
   double rss = 0.0;
@@ -537,6 +551,7 @@ struct ModelRow {
             value("noise_scale", &R::noise_scale),
             value("poses", &R::poses),
             value("mounting_translation", &R::mounting_translation),
+            value("mounting_rotation", &R::mounting_rotation, "rad"),
             value("model", &R::model),
             value("dof", &R::dof),
             value("rss", &R::rss),
@@ -566,6 +581,7 @@ Rows<ModelRow> run_models(const Point& point) {
       r.noise_scale = in.key.noise_scale;
       r.poses = in.key.poses;
       r.mounting_translation = in.key.mounting_translation;
+      r.mounting_rotation = in.key.mounting_rotation;
       r.model = cal::model_label(scores[i].model);
       r.dof = scores[i].dof;
       r.rss = scores[i].rss;

@@ -40,14 +40,15 @@ struct SynthKey {
   int samples_per_cycle = 900;
   int cycles = 10;
   double mounting_translation = 0.003;  ///< m, σ per axis of the transducers' translation errors
+  double mounting_rotation = 0.035;     ///< rad, σ per axis of the transducers' rotation errors
 
   bool operator==(const SynthKey&) const = default;
   /// Lexicographic over the fields (the cache's order).
   friend bool operator<(const SynthKey& a, const SynthKey& b) {
     return std::tie(a.seed, a.noise_scale, a.poses, a.samples_per_cycle, a.cycles,
-                    a.mounting_translation) < std::tie(b.seed, b.noise_scale, b.poses,
-                                                       b.samples_per_cycle, b.cycles,
-                                                       b.mounting_translation);
+                    a.mounting_translation, a.mounting_rotation) <
+           std::tie(b.seed, b.noise_scale, b.poses, b.samples_per_cycle, b.cycles,
+                    b.mounting_translation, b.mounting_rotation);
   }
   /// SynthOptions at their defaults but for the key's fields.
   [[nodiscard]] calibration::SynthOptions options() const;

@@ -25,7 +25,8 @@ std::string robot_label(const SynthKey& key) {
          core::format_double(key.noise_scale) + ", " + std::to_string(key.poses) + " poses, " +
          std::to_string(key.samples_per_cycle) + " samples per cycle × " +
          std::to_string(key.cycles) + " cycles, translation errors σ " +
-         core::format_double(key.mounting_translation) + " m)";
+         core::format_double(key.mounting_translation) + " m, rotation errors σ " +
+         core::format_double(key.mounting_rotation) + " rad)";
 }
 
 struct Cache {
@@ -47,6 +48,7 @@ calibration::SynthOptions SynthKey::options() const {
   o.poses = poses;
   o.samples_per_cycle = samples_per_cycle;
   o.mounting_translation = mounting_translation;
+  o.mounting_rotation = mounting_rotation;
   o.cycles = cycles;
   return o;
 }
