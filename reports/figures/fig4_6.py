@@ -117,6 +117,10 @@ def main():
     c.write_values(args.out, NAME, v)
 
 
+# The search's numbers that the ledger quotes at the default rotations, one per noise scale.
+BY_ROTATION = ("naive_horizontal_over_weight", "naive_over_full_force", "literal_over_full_torque")
+
+
 def search(data: Path, v: dict) -> None:
     """The chapter 4 forensics (calibration_search.py) over cv_search.csv and pose_search.csv:
     ch4_joint_noise_scale is the check behind the seven entries' explanation, None when no one
@@ -128,8 +132,7 @@ def search(data: Path, v: dict) -> None:
                 "naive_horizontal_over_weight"):
         v[f"ch4_joint_{key}"] = None
     v["ch4_search_n"] = 0
-    for key in ("naive_horizontal_over_weight", "naive_over_full_force",
-                "literal_over_full_torque"):
+    for key in BY_ROTATION:
         v[f"ch4_{key}_at_default_rotation"] = None
     for key in ("slope", "intercept", "r2", "rotation_for_thesis"):
         v[f"ch4_horizontal_{key}"] = None
@@ -146,8 +149,7 @@ def search(data: Path, v: dict) -> None:
     v["ch4_search_rotations"] = sorted({s["mounting_rotation"] for s in settings})
     v["ch4_search_noise_scales"] = sorted({s["noise_scale"] for s in settings}, reverse=True)
     default = [s for s in settings if s["mounting_rotation"] == min(v["ch4_search_rotations"])]
-    for key in ("naive_horizontal_over_weight", "naive_over_full_force",
-                "literal_over_full_torque"):
+    for key in BY_ROTATION:
         v[f"ch4_{key}_at_default_rotation"] = [s[key] for s in default]
     horizontal_law(settings, v)
     if hit is None:
@@ -173,7 +175,8 @@ def horizontal_law(settings: list[dict], v: dict) -> None:
     fit = c.linfit([s["mounting_rotation"] for s in rows],
                    [s["naive_horizontal_over_weight"] for s in rows])
     if fit["k"] is None or fit["k"] <= 0:
-        v["ch4_horizontal_slope_reason"] = "fewer than three mounting rotations searched"
+        v["ch4_horizontal_slope_reason"] = ("fewer than three mounting rotations searched, or no "
+                                            "growth with them")
         return
     v["ch4_horizontal_slope"] = fit["k"]
     v["ch4_horizontal_intercept"] = fit["b"]

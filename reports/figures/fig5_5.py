@@ -75,11 +75,12 @@ def main():
         # its snapshots, whose last cycle is cut short
         v[f"{tg}_drift_removed_y_all"], v[f"{tg}_mean_bqdot_y_all"] = drift_removed(r)
         cycles = r["t"] * f
-        whole = cycles < cycles[0] + math.floor(cycles[-1] - cycles[0] + 1e-9)
+        whole_cycles = math.floor(cycles[-1] - cycles[0] + 1e-9)
+        whole = cycles < cycles[0] + whole_cycles
         v[f"{tg}_drift_removed_y"], v[f"{tg}_mean_bqdot_y"] = drift_removed(r.subset(whole))
         v[f"{tg}_test_snapshots"] = r.n
         v[f"{tg}_test_cycles"] = float((r["t"][-1] - r["t"][0]) * f)
-        v[f"{tg}_drift_whole_cycles"] = int(math.floor(cycles[-1] - cycles[0] + 1e-9))
+        v[f"{tg}_drift_whole_cycles"] = int(whole_cycles)
         ms_true = float(np.mean(r["v_true_y"] ** 2))
         v[f"{tg}_model_explains_y"] = 1.0 - v[f"{tg}_test_rmse_model_y"] ** 2 / ms_true
         v[f"{tg}_fit_explains_y"] = 1.0 - v[f"{tg}_test_rmse_fit_y"] ** 2 / ms_true
